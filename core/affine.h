@@ -1,0 +1,61 @@
+// Affine 3x4 transform (a linear 3x3 part and a translation), the transform
+// an RT core applies to a ray at an instance. Named by what it maps:
+// `world_from_object` takes object-space points to world space, its inverse is
+// `object_from_world` (pbrt-v4 naming).
+#pragma once
+
+#include "core/aabb.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <optional>
+
+namespace rtc {
+
+struct Affine {
+    glm::mat3 linear{1.0f};  // column-major: linear[c] is the image of axis c
+    Vec3 translation{0.0f};
+
+    [[nodiscard]] static Affine identity() { return {}; }
+    [[nodiscard]] static Affine translate(const Vec3& t) { return {glm::mat3(1.0f), t}; }
+    [[nodiscard]] static Affine scale(const Vec3& s) {
+        glm::mat3 m(1.0f);
+        m[0][0] = s.x, m[1][1] = s.y, m[2][2] = s.z;
+        return {m, Vec3(0.0f)};
+    }
+    // Columns are the images of the object axes; `origin` the image of 0.
+    [[nodiscard]] static Affine from_columns(const Vec3& x, const Vec3& y, const Vec3& z,
+                                             const Vec3& origin) {
+        return {glm::mat3(x, y, z), origin};
+    }
+
+    [[nodiscard]] Vec3 point(const Vec3& p) const { return linear * p + translation; }
+    [[nodiscard]] Vec3 vector(const Vec3& v) const { return linear * v; }
+    [[nodiscard]] Ray ray(const Ray& r) const {
+        return {point(r.origin), r.tmin, vector(r.direction), r.tmax};
+    }
+
+    // The inverse, or nothing when the linear part is singular or not finite.
+    [[nodiscard]] std::optional<Affine> inverse() const {
+        const float det = glm::determinant(linear);
+        if (!(std::abs(det) > 0.0f) || !std::isfinite(det)) return std::nullopt;
+        const glm::mat3 inv = glm::inverse(linear);
+        return Affine{inv, -(inv * translation)};
+    }
+    [[nodiscard]] Aabb box(const Aabb& b) const {
+        Aabb out;
+        if (b.empty()) return out;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 p{(corner & 1) ? b.hi.x : b.lo.x, (corner & 2) ? b.hi.y : b.lo.y,
+                         (corner & 4) ? b.hi.z : b.lo.z};
+            out.extend(point(p));
+        }
+        return out;
+    }
+};
+
+[[nodiscard]] inline Affine operator*(const Affine& a, const Affine& b) {
+    return {a.linear * b.linear, a.linear * b.translation + a.translation};
+}
+
+}  // namespace rtc

@@ -1,0 +1,58 @@
+// Event sinks: where traversal and intersectors report events.
+//
+// A sink is a template parameter, never a virtual interface, so the null sink
+// compiles to nothing and the counting sink to an increment of a local array.
+#pragma once
+
+#include "core/events.h"
+
+#include <array>
+#include <cstdint>
+
+namespace rtc {
+
+// Discards everything; used when only the hits matter.
+struct NullSink {
+    static constexpr bool kCounts = false;
+    void on(Event) {}
+    void add(Event, std::uint32_t) {}
+};
+
+// Event counts of one ray (or one pixel), small enough to live in registers /
+// on the stack while the ray is traced.
+struct RayCounts {
+    std::array<std::uint32_t, kEventCount> n{};
+
+    [[nodiscard]] std::uint32_t operator[](Event e) const { return n[static_cast<std::size_t>(e)]; }
+    RayCounts& operator+=(const RayCounts& o) {
+        for (std::size_t i = 0; i < kEventCount; ++i) n[i] += o.n[i];
+        return *this;
+    }
+};
+
+// Totals over many rays; 64-bit so billions of box tests do not wrap.
+struct EventTotals {
+    std::array<std::uint64_t, kEventCount> n{};
+
+    [[nodiscard]] std::uint64_t operator[](Event e) const { return n[static_cast<std::size_t>(e)]; }
+    void add(const RayCounts& c) {
+        for (std::size_t i = 0; i < kEventCount; ++i) n[i] += c.n[i];
+    }
+    EventTotals& operator+=(const EventTotals& o) {
+        for (std::size_t i = 0; i < kEventCount; ++i) n[i] += o.n[i];
+        return *this;
+    }
+    bool operator==(const EventTotals&) const = default;
+};
+
+// Counts the events of the ray being traced. The owner flushes `ray` into its
+// per-thread totals once per ray (no atomics, no globals) and resets it.
+struct CountingSink {
+    static constexpr bool kCounts = true;
+    RayCounts ray;
+
+    void on(Event e) { ++ray.n[static_cast<std::size_t>(e)]; }
+    void add(Event e, std::uint32_t k) { ray.n[static_cast<std::size_t>(e)] += k; }
+};
+
+}  // namespace rtc

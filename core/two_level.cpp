@@ -1,0 +1,41 @@
+#include "core/two_level.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace rtc {
+
+Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world_from_object) {
+    const auto inverse = world_from_object.inverse();
+    if (!inverse)
+        throw std::invalid_argument("instance " + std::to_string(id) +
+                                    ": transform is singular or not finite");
+    return {blas, id, world_from_object, *inverse};
+}
+
+TwoLevel build_two_level(std::vector<Bvh> blases, std::vector<Instance> instances,
+                         const BuildOptions& tlas_options) {
+    std::vector<Aabb> boxes;
+    boxes.reserve(instances.size());
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        if (instances[i].blas >= blases.size())
+            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " +
+                                        std::to_string(instances[i].blas));
+        const Aabb& root = blases[instances[i].blas].bounds();
+        // An instance of an empty BLAS gets a point box: it is never entered
+        // usefully but keeps instance indices and TLAS leaves one to one.
+        boxes.push_back(root.empty() ? Aabb::from_point(instances[i].world_from_object.translation)
+                                     : instances[i].world_from_object.box(root));
+    }
+    TwoLevel out{std::move(blases), std::move(instances), {}};
+    out.tlas = build_bvh(boxes, tlas_options);
+    return out;
+}
+
+std::size_t TwoLevel::memory_bytes() const {
+    std::size_t bytes = tlas.memory_bytes() + instances.capacity() * sizeof(Instance);
+    for (const Bvh& b : blases) bytes += b.memory_bytes();
+    return bytes;
+}
+
+}  // namespace rtc

@@ -1,0 +1,96 @@
+// Two-level acceleration structure: a TLAS over instances, each instance a
+// BLAS placed in the world by an affine transform.
+//
+// At an instance the ray is transformed into object space (one
+// InstanceTransform event) with its direction left unnormalized, so the t of a
+// hit in a BLAS is directly comparable with hits from other instances.
+#pragma once
+
+#include "core/affine.h"
+#include "core/bvh.h"
+#include "core/sinks.h"
+#include "core/traverse.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace rtc {
+
+struct Instance {
+    std::uint32_t blas = 0;  // index into TwoLevel::blases
+    std::uint32_t id = 0;    // user instance id, handed to the leaf program
+    Affine world_from_object;
+    Affine object_from_world;
+};
+
+struct TwoLevel {
+    std::vector<Bvh> blases;
+    std::vector<Instance> instances;
+    Bvh tlas;  // over the world-space boxes of the instances' BLAS roots
+
+    [[nodiscard]] std::size_t memory_bytes() const;
+};
+
+// Makes an instance; throws std::invalid_argument when the transform is
+// singular or not finite (it could not be inverted by the hardware either).
+[[nodiscard]] Instance make_instance(std::uint32_t blas, std::uint32_t id,
+                                     const Affine& world_from_object);
+
+// Builds the TLAS over `instances` (whose BLASes must already be in `blases`).
+[[nodiscard]] TwoLevel build_two_level(std::vector<Bvh> blases, std::vector<Instance> instances,
+                                       const BuildOptions& tlas_options);
+
+// What a primitive program sees: which instance and primitive, the ray in both
+// spaces and the current closest distance.
+struct PrimitiveQuery {
+    const Instance& instance;
+    std::uint32_t instance_index;
+    std::uint32_t prim;  // primitive index inside the instance's BLAS
+    const Ray& world_ray;
+    const Ray& object_ray;
+    float tmax;
+};
+
+// Traces `ray` through the two levels. `on_prim(const PrimitiveQuery&)` runs for
+// every primitive of every BLAS leaf the ray reaches and returns the distance
+// of a hit it accepted (or +inf); it prices its own work (triangle test,
+// context switch, ...) through the same sink. Returns the nearest accepted t.
+template <TraversalMode Mode, class Sink, class PrimFn>
+float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+    const Vec3 inv_dir = safe_inverse(ray.direction);
+    const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count, float tmax) {
+        float nearest = kInfinity;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const std::uint32_t index = scene.tlas.prim_ids[first + k];
+            const Instance& inst = scene.instances[index];
+            sink.on(Event::InstanceTransform);
+            Ray object_ray = inst.object_from_world.ray(ray);
+            object_ray.tmax = tmax;
+            const Bvh& blas = scene.blases[inst.blas];
+            const auto on_blas_leaf = [&](std::uint32_t bfirst, std::uint32_t bcount, float btmax) {
+                float best = kInfinity;
+                for (std::uint32_t j = 0; j < bcount; ++j) {
+                    const PrimitiveQuery q{inst, index, blas.prim_ids[bfirst + j], ray, object_ray,
+                                           btmax};
+                    const float t = on_prim(q);
+                    if (t < best) best = t;
+                    if (Mode == TraversalMode::Closest && t < btmax) btmax = t;
+                    if (Mode == TraversalMode::AnyHit && t < kInfinity) break;
+                }
+                return best;
+            };
+            const float t = traverse<Mode, kBlasEvents>(blas, object_ray.origin,
+                                                        safe_inverse(object_ray.direction),
+                                                        object_ray.tmin, tmax, sink, on_blas_leaf);
+            if (t < nearest) nearest = t;
+            if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
+            if (Mode == TraversalMode::AnyHit && t < kInfinity) break;
+        }
+        return nearest;
+    };
+    return traverse<Mode, kTlasEvents>(scene.tlas, ray.origin, inv_dir, ray.tmin, ray.tmax, sink,
+                                       on_tlas_leaf);
+}
+
+}  // namespace rtc
