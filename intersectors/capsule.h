@@ -1,0 +1,17 @@
+// Capsule (Quilez): segment p0-p1 swept by a sphere of one radius.
+// TODO(intersectors): derivation, bounds, oriented_bounds, intersect.
+#pragma once
+
+#include "core/obb.h"
+#include "intersectors/hit.h"
+#include "intersectors/kinds.h"
+
+namespace rtc {
+
+struct Capsule {
+    Vec3 p0{0.0f};
+    Vec3 p1{0.0f};
+    float radius = 0.0f;
+};
+
+}  // namespace rtc
