@@ -1,4 +1,4 @@
-#include "sim/config_error.h"
+#include "sim/json_reader.h"
 
 #include <cmath>
 

@@ -5,6 +5,8 @@
 // silently.
 #pragma once
 
+#include "core/input_error.h"
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -15,13 +17,6 @@
 #include <string_view>
 
 namespace rtc {
-
-// An error in user input (config, scene file). `what()` is the full one-line
-// message: "<file>: <json path or line/offset>: <problem>".
-class InputError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 // A JSON object being read, with the path that names it in messages.
 class JsonReader {
