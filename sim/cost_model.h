@@ -1,0 +1,39 @@
+// Pricing: cycles = sum over events of count x cost. A pure function applied
+// after tracing, so one traced run can be priced under many presets (cost
+// sweeps, calibration) without tracing again.
+#pragma once
+
+#include "core/sinks.h"
+
+#include <array>
+#include <string>
+
+namespace rtc {
+
+struct CostModel {
+    std::string name;
+    std::string description;
+    std::array<double, kEventCount> cycles{};   // cost per event
+    std::array<std::string, kEventCount> source{};  // provenance of each number
+
+    [[nodiscard]] double& operator[](Event e) { return cycles[static_cast<std::size_t>(e)]; }
+    [[nodiscard]] double operator[](Event e) const { return cycles[static_cast<std::size_t>(e)]; }
+};
+
+struct PricedRun {
+    double total_cycles = 0.0;
+    std::array<double, kEventCount> by_event{};  // cycles spent on each event
+};
+
+[[nodiscard]] PricedRun price(const EventTotals& counts, const CostModel& model);
+[[nodiscard]] double price_cycles(const RayCounts& counts, const CostModel& model);
+
+// Reads a preset: {"name", "description", "cycles": {"<event>": {"value": x,
+// "source": "..."}}}. Every event must be priced (a missing one is an error,
+// so no cost silently defaults to zero); costs must be finite and >= 0.
+// Errors name the file and JSON path.
+[[nodiscard]] CostModel load_cost_model(const std::string& path);
+[[nodiscard]] CostModel parse_cost_model(const std::string& text, const std::string& file);
+[[nodiscard]] std::string cost_model_to_json(const CostModel& model);
+
+}  // namespace rtc

@@ -1,0 +1,56 @@
+// Memory of each method's acceleration structures, priced from a preset of
+// bytes per node / instance / primitive box / triangle, plus the primitive
+// data both methods share. Also the hardware's instance limit.
+#pragma once
+
+#include "intersectors/kinds.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+struct MemoryModel {
+    std::string name;
+    std::string description;
+    double node_bytes_w2 = 64, node_bytes_w4 = 128, node_bytes_w8 = 80;  // per inner node
+    double custom_prim_bytes = 32;  // per custom-primitive AABB in a BLAS leaf
+    double triangle_bytes = 48;     // per triangle in a BLAS (hardware format)
+    double instance_bytes = 250;    // per TLAS instance
+    std::array<double, 4> primitive_data_bytes{32, 32, 32, 64};  // per PrimitiveKind
+    double mesh_vertex_bytes = 12, mesh_triangle_bytes = 12;     // shared mesh data
+    std::uint64_t instance_limit = 1u << 24;
+    std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
+
+    [[nodiscard]] double node_bytes(int width) const {
+        return width == 2 ? node_bytes_w2 : width == 4 ? node_bytes_w4 : node_bytes_w8;
+    }
+};
+
+// What a method's structures consist of (counted from the built structures or
+// computed from the scene when the method is not built).
+struct StructureCounts {
+    std::uint64_t tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    int width = 4;
+};
+
+struct MemoryBreakdown {
+    double tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    double common = 0;  // primitive data + mesh, shared by every method
+    [[nodiscard]] double acceleration() const {
+        return tlas_nodes + blas_nodes + instances + custom_prims + triangles;
+    }
+    [[nodiscard]] double total() const { return acceleration() + common; }
+};
+
+[[nodiscard]] MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m,
+                                           PrimitiveKind kind, std::uint64_t primitives,
+                                           std::uint64_t mesh_vertices, std::uint64_t mesh_triangles);
+
+// {"name", "description", "bytes": {"<key>": {"value", "source"}}, "instance_limit": {...}}
+[[nodiscard]] MemoryModel load_memory_model(const std::string& path);
+[[nodiscard]] MemoryModel parse_memory_model(const std::string& text, const std::string& file);
+
+}  // namespace rtc
