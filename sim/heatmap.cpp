@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace rtc {
 namespace {
@@ -157,6 +158,18 @@ ScalarField ratio_field(const ScalarField& a, const ScalarField& b) {
     return r;
 }
 
+std::vector<Tick> ratio_ticks(double max_ratio) {
+    std::vector<Tick> ticks;
+    const int top = std::min(30, static_cast<int>(std::floor(std::log2(std::max(max_ratio, 1.0)) + 1e-9)));
+    const int stride = std::max(1, (top + 3) / 4);  // at most ~9 labels
+    for (int k = -top; k <= top; ++k) {
+        if (k % stride != 0) continue;
+        const std::string power = std::to_string(1L << std::abs(k));
+        ticks.push_back({std::ldexp(1.0, k), (k < 0 ? "1/" + power : power) + "x"});
+    }
+    return ticks;
+}
+
 Heatmap render_ratio_map(const ScalarField& numerator, const ScalarField& denominator, const RatioMapOptions& opt) {
     const ScalarField r = ratio_field(numerator, denominator);
     const double m = opt.max_ratio > 1.0 ? opt.max_ratio : 8.0;
@@ -166,14 +179,7 @@ Heatmap render_ratio_map(const ScalarField& numerator, const ScalarField& denomi
     h.caption = opt.caption;
     h.colormap = Colormap::BlueWhiteRed;
     h.pixel_scale = opt.pixel_scale;
-    const int top = static_cast<int>(std::floor(std::log2(m) + 1e-9));
-    const int stride = std::max(1, (top + 3) / 4);
-    for (int k = -top; k <= top; ++k) {
-        if (k % stride != 0) continue;
-        const double v = std::ldexp(1.0, k);
-        const std::string label = k >= 0 ? format_sig(v, 6) + "x" : "1/" + format_sig(1.0 / v, 6) + "x";
-        h.ticks.push_back({v, label});
-    }
+    h.ticks = ratio_ticks(m);
     return render_heatmap(r, {1.0 / m, m, ScaleKind::Log}, h);
 }
 

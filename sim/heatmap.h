@@ -80,6 +80,9 @@ struct RatioMapOptions {
     int pixel_scale = 0;
 };
 
+// Powers of two in [1/max_ratio, max_ratio], labelled "1/4x", "1x", "4x".
+[[nodiscard]] std::vector<Tick> ratio_ticks(double max_ratio);
+
 // numerator/denominator with the diverging map: 1 is white, > 1 red, < 1 blue;
 // ticks at powers of two labelled "1/4x", "1x", "4x".
 [[nodiscard]] Heatmap render_ratio_map(const ScalarField& numerator, const ScalarField& denominator,
