@@ -1,6 +1,7 @@
 // SVG plot writer (see plot_svg.h). Both plot kinds share one frame: axes
 // fitted to the data and widened to nice tick values, grid, tick labels,
-// axis labels, title, and a legend to the right of the plot area.
+// axis labels, title, and a legend (right of the plot area for line plots,
+// inside its top-left corner for scatter plots, whose legend is the guide only).
 #include "sim/plot_svg.h"
 
 #include "core/input_error.h"
@@ -74,12 +75,14 @@ struct Frame {
     Axis x, y;
     double left = 70, top = 40, right = 0, bottom = 0;  // plot-area edges
 
+    bool legend_inside = false;  // top-left inside the plot area, else right of it
+    double legend_w = 0.0;
+
     Frame(const PlotAxes& ax, const std::vector<double>& xs, const std::vector<double>& ys,
-          const std::vector<LegendEntry>& legend)
-        : axes(ax), x(make_axis(xs, ax.log_x)), y(make_axis(ys, ax.log_y)) {
-        double legend_w = 0.0;
-        for (const auto& e : legend) legend_w = std::max(legend_w, 30.0 + kCharWidth * static_cast<double>(e.name.size()));
-        right = axes.width - 20.0 - (legend.empty() ? 0.0 : legend_w + 10.0);
+          const std::vector<LegendEntry>& legend, bool inside)
+        : axes(ax), x(make_axis(xs, ax.log_x)), y(make_axis(ys, ax.log_y)), legend_inside(inside) {
+        for (const auto& e : legend) legend_w = std::max(legend_w, 34.0 + kCharWidth * static_cast<double>(e.name.size()));
+        right = axes.width - 20.0 - (legend.empty() || legend_inside ? 0.0 : legend_w + 10.0);
         bottom = axes.height - 50.0;
         if (axes.title.empty()) top = 20;
     }
@@ -123,9 +126,14 @@ struct Frame {
                  xml_escape(axes.y_label) + "</text>\n";
         }
         s += "</g>\n";
+        const double lx = legend_inside ? left + 8 : right + 12;
+        if (legend_inside && !legend.empty())
+            s += "<rect x=\"" + num(lx - 4) + "\" y=\"" + num(top + 4) + "\" width=\"" + num(legend_w) + "\" height=\"" +
+                 num(18.0 * static_cast<double>(legend.size()) + 4) +
+                 "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
         for (std::size_t i = 0; i < legend.size(); ++i) {
             const LegendEntry& e = legend[i];
-            const double ly = top + 10 + 18.0 * static_cast<double>(i), lx = right + 12;
+            const double ly = top + 16 + 18.0 * static_cast<double>(i);
             s += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 20) + "\" y2=\"" + num(ly) +
                  "\" stroke=\"" + e.color + "\" stroke-width=\"2\"" + (e.dashed ? " stroke-dasharray=\"5,3\"" : "") + "/>\n";
             if (e.marker)
@@ -180,7 +188,7 @@ std::string line_plot_svg(const LinePlot& plot) {
                 xs.push_back(s.x[k]), ys.push_back(s.y[k]);
         legend.push_back({s.name, kPalette[i % kPalette.size()], false, plot.markers});
     }
-    const Frame f(plot.axes, xs, ys, legend);
+    const Frame f(plot.axes, xs, ys, legend, false);
     std::string svg = f.open(legend);
     svg += "<g clip-path=\"url(#plot-area)\">\n";
     for (std::size_t i = 0; i < plot.series.size(); ++i) {
@@ -240,7 +248,7 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
     if (plot.guide == ScatterGuide::Identity) legend.push_back({"y = x", "#777777", true, false});
     if (have_fit) legend.push_back({"least-squares fit (R\xC2\xB2 = " + format_fixed(r2, 3) + ")", "#D55E00", true, false});
 
-    const Frame f(ax, xs, ys, legend);
+    const Frame f(ax, xs, ys, legend, true);
     std::string svg = f.open(legend);
     svg += "<g clip-path=\"url(#plot-area)\">\n";
     if (plot.guide == ScatterGuide::Identity) {
@@ -257,15 +265,16 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
         }
         if (pts.size() >= 2) svg += polyline(pts, "#D55E00", true);
     }
+    std::string labels;  // outside the clip, so labels of edge points stay whole
     for (const ScatterPoint& p : plot.points) {
         if (!usable(p.x, ax.log_x) || !usable(p.y, ax.log_y)) continue;
         const double cx = f.px(p.x), cy = f.py(p.y);
         svg += "<circle cx=\"" + num(cx) + "\" cy=\"" + num(cy) + "\" r=\"3.5\" fill=\"#0072B2\" fill-opacity=\"0.8\"/>\n";
         if (!p.label.empty())
-            svg += "<text x=\"" + num(cx + 5) + "\" y=\"" + num(cy - 5) + "\" font-size=\"10\" fill=\"#333333\">" +
-                   xml_escape(p.label) + "</text>\n";
+            labels += "<text x=\"" + num(cx + 5) + "\" y=\"" + num(cy - 5) + "\" font-size=\"10\" fill=\"#333333\">" +
+                      xml_escape(p.label) + "</text>\n";
     }
-    return svg + "</g>\n</svg>\n";
+    return svg + "</g>\n" + labels + "</svg>\n";
 }
 
 void write_text_file(const std::string& path, const std::string& content) {

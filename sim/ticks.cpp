@@ -24,8 +24,8 @@ std::string format_tick(double value, double step) {
     double scale = 1.0;
     const char* suffix = "";
     const double a = std::max(std::abs(value), std::abs(step));
-    if (a >= 1e10) scale = 1e9, suffix = "G";
-    else if (a >= 1e7) scale = 1e6, suffix = "M";
+    if (a >= 1e9) scale = 1e9, suffix = "G";
+    else if (a >= 1e6) scale = 1e6, suffix = "M";
     else if (a >= 1e4) scale = 1e3, suffix = "k";
     const double s = std::abs(step) / scale;
     const int decimals = s > 0.0 ? std::clamp(static_cast<int>(-std::floor(std::log10(s) + 1e-9)), 0, 12) : 0;
