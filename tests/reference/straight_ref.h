@@ -87,8 +87,7 @@ inline Interval cone(V3 o, V3 d, V3 a, V3 w, Real g0, Real g1) {
 }
 
 // Convex hull of spheres (p0, r0) and (p1, r1): the link; r0 == r1 is the capsule.
-inline Interval link(const Ray& ray, const Vec3& p0f, Real r0, const Vec3& p1f, Real r1) {
-    const V3 o = v3(ray.origin), d = v3(ray.direction), p0 = v3(p0f), p1 = v3(p1f);
+inline Interval link(V3 o, V3 d, V3 p0, Real r0, V3 p1, Real r1) {
     Interval out = hull(sphere(o, d, p0, r0), sphere(o, d, p1, r1));
     const V3 ab = p1 - p0;
     const Real l = std::sqrt(dot(ab, ab));
@@ -123,6 +122,10 @@ inline Interval link(const Ray& ray, const Vec3& p0f, Real r0, const Vec3& p1f, 
     const Interval body = meet(c, sl);
     if (!body.empty()) out = hull(out, body);
     return out;
+}
+
+inline Interval link(const Ray& ray, const Vec3& p0, Real r0, const Vec3& p1, Real r1) {
+    return link(v3(ray.origin), v3(ray.direction), v3(p0), r0, v3(p1), r1);
 }
 
 // Finite cylinder with flat caps.
