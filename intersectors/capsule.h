@@ -52,12 +52,19 @@ template <class Sink>
     if (!(r > 0.0)) return std::nullopt;  // zero radius: no surface (and NaN lands here)
     const DVec3 p0(cap.p0), p1(cap.p1);
     const DVec3 c = 0.5 * (p0 + p1);
-    const LocalRay lr = local_ray(ray, c);
     const DVec3 a = p0 - c, ba = p1 - p0;
     const double len2 = glm::dot(ba, ba);
-    // Cheap reject: lr.o is the ray point closest to the centre.
-    const double reach = 0.5 * std::sqrt(len2) + r;
-    if (!(lr.dd > 0.0) || !(glm::dot(lr.o, lr.o) <= reach * reach)) return std::nullopt;
+    // Cheap reject without a division or square root (most calls miss): the
+    // ray line's squared distance to the centre times |d|^2 is
+    // |oc|^2 |d|^2 - (oc.d)^2; the capsule lies within L/2 + r of the centre,
+    // and (L/2 + r)^2 <= 2 (L^2/4 + r^2) avoids the square root of L^2.
+    {
+        const DVec3 d(ray.direction), oc = DVec3(ray.origin) - c;
+        const double dd = glm::dot(d, d), od = glm::dot(oc, d);
+        const double reach2 = 2.0 * (0.25 * len2 + r * r);
+        if (!(dd > 0.0) || !(glm::dot(oc, oc) * dd - od * od <= reach2 * dd)) return std::nullopt;
+    }
+    const LocalRay lr = local_ray(ray, c);
 
     Span span = hull(sphere_span(lr, a, r, 1), sphere_span(lr, -a, r, 2));
     DVec3 w(0.0);
