@@ -68,7 +68,9 @@ TEST_CASE("scene stats: counts, bounds, means") {
     CHECK(st.mean_segment_length == doctest::Approx(1.5));
     CHECK(st.mean_radius == doctest::Approx(0.35));
     CHECK(st.mean_length_over_radius == doctest::Approx((1.0 / 0.2 + 2.0 / 0.5) / 2.0));
-    CHECK(st.bounds.lo == Vec3(-3.0f, -0.5f, -0.5f));
+    CHECK(st.bounds.lo.x == -3.0f);                        // the mesh
+    CHECK(st.bounds.lo.y == doctest::Approx(-0.3f));       // point (1,0,0) with r 0.3
+    CHECK(st.bounds.lo.z == doctest::Approx(-0.5f));       // points with r 0.5
     CHECK(st.bounds.hi.y == doctest::Approx(7.5f));
     CHECK(st.bounds.hi.z == 4.0f);
     CHECK_FALSE(st.total_aabb_area.has_value());
