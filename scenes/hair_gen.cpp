@@ -104,9 +104,13 @@ Scene make_hair_on_mesh(const HairDesc& d, const TriangleMesh& emitter) {
     std::vector<double> cdf;
     cdf.reserve(emitter.triangles.size());
     double total = 0.0;
+    std::size_t last_positive = 0;  // where a pick rounded up to `total` must land
     for (const auto& t : emitter.triangles) {
         const Vec3 &a = emitter.vertices.at(t[0]), &b = emitter.vertices.at(t[1]), &c = emitter.vertices.at(t[2]);
-        total += 0.5 * glm::length(glm::cross(b - a, c - a));
+        // The same float cross product as below, so a triangle whose normal
+        // cannot be formed has exactly zero weight and is never picked.
+        total += 0.5 * static_cast<double>(glm::length(glm::cross(b - a, c - a)));
+        if (total > (cdf.empty() ? 0.0 : cdf.back())) last_positive = cdf.size();
         cdf.push_back(total);
     }
     if (!(total > 0.0)) throw std::invalid_argument("hair: the emitter mesh has no area");
@@ -118,14 +122,10 @@ Scene make_hair_on_mesh(const HairDesc& d, const TriangleMesh& emitter) {
         const double pick = rng.uniform() * total;
         const std::size_t tri = std::min<std::size_t>(
             static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin()),
-            cdf.size() - 1);
+            last_positive);
         const auto& t = emitter.triangles[tri];
         const Vec3 &a = emitter.vertices[t[0]], &b = emitter.vertices[t[1]], &c = emitter.vertices[t[2]];
         const Vec3 cross = glm::cross(b - a, c - a);
-        if (!(glm::length(cross) > 0.0f)) {  // a zero-area triangle has (almost) no weight; skip it
-            --i;
-            continue;
-        }
         // Uniform point in the triangle (square-root warp).
         const float su = std::sqrt(static_cast<float>(rng.uniform()));
         const float v = static_cast<float>(rng.uniform());

@@ -84,6 +84,7 @@ Strands curves_from_file(const JsonReader& c) {
         c.choice("format", "auto", {"auto", "hair", "tfx", "trk", "swc", "obj", "txt"});
     const std::filesystem::path path = resolve_data_path(c, "path");
     LoadedCurves loaded = load_curves(path, *curve_format_from_name(format_name));
+    if (loaded.strands.strand_count() == 0) c.fail("path", "no strands in " + path.string());
     const double scale = c.positive("radius_scale", 1.0);
     if (c.has("radius")) {
         const auto r = static_cast<float>(c.positive("radius", std::nullopt));
