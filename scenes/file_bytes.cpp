@@ -1,0 +1,20 @@
+// Whole-file reading shared by every loader (see file_bytes.h).
+#include "scenes/file_bytes.h"
+
+#include <fstream>
+
+namespace rtc {
+
+std::vector<std::uint8_t> read_file_bytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    if (!in) throw InputError(file.string() + ": cannot open file");
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw InputError(file.string() + ": cannot read file size");
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+    in.seekg(0);
+    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
+        throw InputError(file.string() + ": read failed");
+    return bytes;
+}
+
+}  // namespace rtc

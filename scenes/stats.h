@@ -1,0 +1,32 @@
+// Summary figures of a scene, for reports and for sanity checks of loaders:
+// counts, bounds and the shape of the segments (length over radius is what
+// makes AABBs loose, hence what the masquerade trick feeds on).
+#pragma once
+
+#include "core/aabb.h"
+#include "scenes/scene.h"
+
+#include <cstddef>
+#include <optional>
+
+namespace rtc {
+
+struct SceneStats {
+    std::size_t strands = 0;
+    std::size_t segments = 0;
+    std::size_t points = 0;
+    std::size_t triangles = 0;
+    Aabb bounds;                          // points grown by their radii, plus mesh vertices
+    double mean_segment_length = 0.0;
+    double mean_radius = 0.0;             // per segment: mean of its two point radii
+    double mean_length_over_radius = 0.0; // per segment, over segments with radius > 0 (0 if none)
+
+    // Surface-area figures of the primitives' bounding boxes, which need the
+    // intersectors' bounds programs; filled by the sim layer, empty here.
+    std::optional<double> total_aabb_area;
+    std::optional<double> total_obb_area;
+};
+
+[[nodiscard]] SceneStats compute_stats(const Scene& scene);
+
+}  // namespace rtc

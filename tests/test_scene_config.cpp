@@ -1,0 +1,103 @@
+// The scene block of a config: each type, path resolution, defaults, and the
+// errors (unknown keys, bad values, missing radius) naming file and JSON path.
+#include "sim/scene_config.h"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+using namespace rtc;
+using nlohmann::json;
+
+namespace {
+// A config that claims to live in ../shared/data, so relative data paths
+// resolve beside it.
+const std::string kConfig = std::string(RTCSIM_SHARED_DIR) + "/data/run.json";
+
+Scene load(const json& j) { return load_scene(JsonReader(j, kConfig, "/scene")); }
+
+std::string error_of(const json& j) {
+    try {
+        (void)load(j);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+}  // namespace
+
+TEST_CASE("scene config: bundle with defaults and with every key") {
+    const Scene d = load({{"type", "bundle"}});
+    CHECK(d.strands.strand_count() == 1000);
+    CHECK(d.strands.radii[0] == 0.002f);
+    const Scene s = load({{"type", "bundle"}, {"count", 10}, {"radius", 0.01}, {"tilt_deg", 90},
+                          {"seed", 3}, {"name", "b"}, {"bundle_radius", 2.0}, {"length", 4.0}});
+    CHECK(s.name == "b");
+    CHECK(s.strands.strand_count() == 10);
+    CHECK(std::abs(s.strands.points[1].x - s.strands.points[0].x) == doctest::Approx(4.0f));  // tilted 90 deg
+}
+
+TEST_CASE("scene config: procedural hair") {
+    const Scene s = load({{"type", "hair"}, {"style", "wavy"}, {"strands", 100}, {"points_per_strand", 5},
+                          {"radius", 0.01}, {"tip_radius", 0.001}, {"with_mesh", true}});
+    CHECK(s.strands.segment_count() == 400);
+    CHECK(s.strands.radii[4] == doctest::Approx(0.001f));
+    CHECK_FALSE(s.mesh.triangles.empty());
+    // Mesh emitter, mesh path relative to the config's directory.
+    const Scene m = load({{"type", "hair"}, {"emitter", "mesh"}, {"mesh", "hair/sintel_head.obj"},
+                          {"strands", 50}, {"with_mesh", true}});
+    CHECK(m.strands.strand_count() == 50);
+    CHECK(m.mesh.triangles.size() == 5952);
+}
+
+TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
+    const Scene sintel = load({{"type", "file"},
+                               {"curves", {{"path", "hair/sintel_hair_16pts.tfx"}, {"radius", 0.0001}}},
+                               {"mesh", {{"path", "hair/sintel_head.obj"}}}});
+    CHECK(sintel.strands.segment_count() == 171000);
+    CHECK(sintel.strands.radii[17] == 0.0001f);
+    CHECK(sintel.mesh.triangles.size() == 5952);
+
+    const Scene bear = load({{"type", "file"},
+                             {"curves", {{"path", "hair/tressfx_bear.tfx"}, {"radius", 0.05},
+                                         {"follow_hairs", 4}, {"follow_spread", 0.5}}}});
+    CHECK(bear.strands.strand_count() == 5 * 48113);
+    CHECK(bear.strands.segment_count() == 5 * 144339);
+
+    const Scene fur = load({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}}}});
+    const Scene fur2 = load({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}, {"radius_scale", 2}}}});
+    CHECK(fur2.strands.radii[5] == 2.0f * fur.strands.radii[5]);
+    CHECK(fur.strands.radii[5] > 0.0f);
+}
+
+TEST_CASE("scene config: errors name the config file and the JSON path") {
+    auto has = [](const std::string& msg, const std::string& part) {
+        CAPTURE(msg);
+        CHECK(msg.rfind(kConfig + ": ", 0) == 0);
+        CHECK(msg.find(part) != std::string::npos);
+    };
+    has(error_of({{"type", "cube"}}), "/scene/type");
+    has(error_of({{"count", 3}}), "/scene/type: missing");
+    has(error_of({{"type", "bundle"}, {"cuont", 3}}), "/scene/cuont: unknown key");
+    has(error_of({{"type", "bundle"}, {"radius", 0.6}}), "/scene/radius: must be smaller");
+    has(error_of({{"type", "bundle"}, {"count", 0}}), "/scene/count");
+    has(error_of({{"type", "hair"}, {"style", "frizzy"}}), "/scene/style");
+    has(error_of({{"type", "hair"}, {"points_per_strand", 1}}), "/scene/points_per_strand");
+    has(error_of({{"type", "hair"}, {"mesh", "x.obj"}}), "/scene/mesh: only with");
+    has(error_of({{"type", "file"}}), "/scene: a file scene needs");
+    has(error_of({{"type", "file"}, {"curves", {{"path", "nope.hair"}}}}), "/scene/curves/path: no such file");
+    has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}}}}),
+        "/scene/curves/radius: missing");
+    has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}, {"radius", -1}}}}),
+        "/scene/curves/radius: expected a positive number");
+    has(error_of({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}, {"format", "abc"}}}}),
+        "/scene/curves/format");
+    has(error_of({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}, {"follow_spread", 1}}}}),
+        "/scene/curves/follow_spread: only with");
+    has(error_of({{"type", "file"}, {"mesh", {{"path", "hair/sintel_head.obj"}, {"scale", 1}}}}),
+        "/scene/mesh/scale: unknown key");
+    // A data file error names the data file instead.
+    const std::string wrong_format =
+        error_of({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}, {"format", "trk"}}}});
+    CHECK(wrong_format.find("fur_synthetic.hair: byte 0: bad magic") != std::string::npos);
+}

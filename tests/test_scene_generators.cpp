@@ -1,0 +1,159 @@
+// The synthetic bundle, procedural hair, follow hairs and the sphere mesh.
+#include "scenes/bundle.h"
+#include "scenes/follow_hairs.h"
+#include "scenes/hair_gen.h"
+#include "scenes/sphere_mesh.h"
+#include "scenes/stats.h"
+
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+using namespace rtc;
+
+TEST_CASE("scene bundle: lengths, radii, axes inside the bundle, tilt") {
+    for (float tilt : {0.0f, 15.0f, 45.0f}) {
+        CAPTURE(tilt);
+        const BundleDesc d{1000, 0.002f, tilt, 42};
+        const Scene sc = make_bundle(d);
+        const Strands& s = sc.strands;
+        REQUIRE(s.strand_count() == 1000);
+        CHECK(s.segment_count() == 1000);
+        const float a = tilt * 3.14159265f / 180.0f;
+        const Vec3 axis_dir(-std::sin(a), std::cos(a), 0.0f);  // +Y rotated about +Z
+        float max_dist = 0.0f;
+        for (std::size_t i = 0; i < 1000; ++i) {
+            const Vec3 p0 = s.points[2 * i], p1 = s.points[2 * i + 1];
+            CHECK(glm::length(p1 - p0) == doctest::Approx(1.0f).epsilon(1e-5));
+            CHECK(glm::length(glm::normalize(p1 - p0) - axis_dir) < 1e-5f);
+            CHECK(s.radii[2 * i] == 0.002f);
+            CHECK(s.radii[2 * i + 1] == 0.002f);
+            // Centred at the origin along the axis; distance of the axis from the bundle's axis.
+            const Vec3 mid = 0.5f * (p0 + p1);
+            CHECK(std::abs(glm::dot(mid, axis_dir)) < 1e-5f);
+            max_dist = std::max(max_dist, glm::length(mid));
+        }
+        CHECK(max_dist <= 0.5f - 0.002f + 1e-6f);
+        CHECK(max_dist > 0.45f);  // uniform over the disk reaches near the rim
+    }
+    // Same seed, same bundle; another seed, another bundle.
+    CHECK(make_bundle({10, 0.01f, 30.0f, 5}).strands.points == make_bundle({10, 0.01f, 30.0f, 5}).strands.points);
+    CHECK(make_bundle({10, 0.01f, 30.0f, 5}).strands.points != make_bundle({10, 0.01f, 30.0f, 6}).strands.points);
+    CHECK_THROWS_AS((void)make_bundle({0, 0.01f, 0.0f, 1}), std::invalid_argument);
+    CHECK_THROWS_AS((void)make_bundle({1, 0.5f, 0.0f, 1}), std::invalid_argument);
+}
+
+TEST_CASE("scene bundle: uniform over the disk (inner half-radius disk holds ~1/4)") {
+    const Scene sc = make_bundle({20000, 0.001f, 0.0f, 9});
+    std::size_t inner = 0;
+    for (std::size_t i = 0; i < 20000; ++i) {
+        const Vec3 p = sc.strands.points[2 * i];
+        inner += std::hypot(p.x, p.z) < 0.5f * (0.5f - 0.001f);
+    }
+    CHECK(static_cast<double>(inner) / 20000.0 == doctest::Approx(0.25).epsilon(0.05));
+}
+
+TEST_CASE("scene hair: roots on the sphere, counts, taper, styles") {
+    for (HairStyle style : {HairStyle::Straight, HairStyle::Wavy, HairStyle::Curly}) {
+        HairDesc d;
+        d.style = style;
+        d.strands = 500;
+        d.points_per_strand = 12;
+        d.length = 0.5f;
+        d.radius = 0.01f;
+        d.tip_radius = 0.002f;
+        d.sphere_radius = 2.0f;
+        d.with_mesh = true;
+        const Scene sc = make_hair(d);
+        const Strands& s = sc.strands;
+        REQUIRE(s.strand_count() == 500);
+        CHECK(s.segment_count() == 500 * 11);
+        CHECK(sc.mesh.triangles.size() > 100);
+        for (std::size_t i = 0; i < 500; ++i) {
+            const Vec3 root = s.points[s.offsets[i]];
+            CHECK(glm::length(root) == doctest::Approx(2.0f).epsilon(1e-5));
+            CHECK(s.radii[s.offsets[i]] == doctest::Approx(0.01f));
+            CHECK(s.radii[s.offsets[i + 1] - 1] == doctest::Approx(0.002f));
+            // Tips stand outside the sphere, about `length` along the growth axis.
+            const Vec3 tip = s.points[s.offsets[i + 1] - 1];
+            CHECK(glm::length(tip) > 2.0f + 0.3f);
+        }
+        const SceneStats st = compute_stats(sc);
+        if (style == HairStyle::Straight)
+            CHECK(st.mean_segment_length == doctest::Approx(0.5 / 11).epsilon(1e-3));
+        else  // waves and curls make strands longer than their axis
+            CHECK(st.mean_segment_length > 0.5 / 11 * 1.05);
+    }
+}
+
+TEST_CASE("scene hair: millions of segments quickly, deterministic") {
+    HairDesc d;
+    d.style = HairStyle::Curly;
+    d.strands = 250000;
+    d.points_per_strand = 9;  // 2,000,000 segments
+    const auto t0 = std::chrono::steady_clock::now();
+    const Scene sc = make_hair(d);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    CHECK(sc.strands.segment_count() == 2000000);
+    MESSAGE("2M curly segments in " << seconds << " s");
+    CHECK(seconds < 2.0);
+    HairDesc small = d;
+    small.strands = 100;
+    CHECK(make_hair(small).strands.points == make_hair(small).strands.points);
+}
+
+TEST_CASE("scene hair: mesh emitter grows along triangle normals") {
+    TriangleMesh plane;  // the square [0,1]^2 at z = 0, facing +z
+    plane.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};
+    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+    HairDesc d;
+    d.emitter = HairEmitter::Mesh;
+    d.strands = 300;
+    d.points_per_strand = 4;
+    d.lean = 0.0f;
+    d.with_mesh = true;
+    const Scene sc = make_hair_on_mesh(d, plane);
+    CHECK(sc.mesh.triangles.size() == 2);
+    for (std::size_t i = 0; i < 300; ++i) {
+        const Vec3 root = sc.strands.points[sc.strands.offsets[i]];
+        const Vec3 tip = sc.strands.points[sc.strands.offsets[i + 1] - 1];
+        CHECK(root.z == 0.0f);
+        CHECK((root.x >= 0.0f && root.x <= 1.0f && root.y >= 0.0f && root.y <= 1.0f));
+        CHECK(tip.z == doctest::Approx(d.length));
+    }
+}
+
+TEST_CASE("scene sphere mesh: closed, outward-facing") {
+    const TriangleMesh m = make_sphere_mesh(Vec3(1, 2, 3), 0.5f, 8, 12);
+    CHECK(m.triangles.size() == 2 * 12 * (8 - 1));
+    double volume = 0.0;  // divergence theorem: positive iff outward winding
+    for (const auto& t : m.triangles) {
+        const Vec3 a = m.vertices[t[0]] - Vec3(1, 2, 3), b = m.vertices[t[1]] - Vec3(1, 2, 3),
+                   c = m.vertices[t[2]] - Vec3(1, 2, 3);
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    CHECK(volume > 0.9 * 4.0 / 3.0 * 3.14159 * 0.125);
+    CHECK(volume < 4.0 / 3.0 * 3.14159 * 0.125);
+}
+
+TEST_CASE("scene follow hairs: copies around each guide, fanning out") {
+    Strands g;
+    g.points = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 2, 0), Vec3(5, 0, 0), Vec3(5, 1, 0)};
+    g.radii = {0.1f, 0.1f, 0.1f, 0.2f, 0.2f};
+    g.offsets = {0, 3, 5};
+    const Strands f = add_follow_hairs(g, {4, 0.05f, 1.0f, 3});
+    REQUIRE(f.strand_count() == 10);
+    CHECK(f.segment_count() == 5 * 2 + 5 * 1);
+    CHECK(f.points[0] == g.points[0]);  // guide first
+    for (std::size_t c = 1; c < 5; ++c) {
+        const Vec3 root_offset = f.points[f.offsets[c]] - g.points[0];
+        const Vec3 tip_offset = f.points[f.offsets[c] + 2] - g.points[2];
+        CHECK(glm::length(root_offset) <= 0.05f + 1e-6f);
+        CHECK(std::abs(root_offset.y) < 1e-6f);  // perpendicular to the first segment
+        CHECK(glm::length(tip_offset) == doctest::Approx(2.0f * glm::length(root_offset)));
+        CHECK(f.radii[f.offsets[c]] == 0.1f);
+    }
+    CHECK(add_follow_hairs(g, {}).points == g.points);
+}
