@@ -260,3 +260,27 @@ TEST_CASE("calibrate: weights, validation and determinism") {
     CHECK_THROWS_AS((void)calibrate(runs, guess_model(), neg), std::invalid_argument);
     CHECK_THROWS_AS((void)calibrate({}, guess_model(), neg), std::invalid_argument);
 }
+
+TEST_CASE("calibrate: one-parameter std. error equals sigma / |J| by finite differences") {
+    CostModel truth = guess_model();
+    truth[Event::ContextSwitch] = 310;
+    auto runs = synthetic_runs(truth);
+    Lcg rng{99};
+    for (CalibrationRun& r : runs) r.target_speedup *= std::exp(0.04 * (rng.next() - 0.5));
+    const std::vector<FitParameter> params = {{{Event::ContextSwitch}, 50, 1000, Tie::Value}};
+    const CalibrationResult res = calibrate(runs, guess_model(), params);
+    const double x = res.model[Event::ContextSwitch], h = 1e-3;
+    CostModel lo = res.model, hi = res.model;
+    lo[Event::ContextSwitch] = x - h;
+    hi[Event::ContextSwitch] = x + h;
+    double jj = 0, ssr = 0, jr = 0;
+    for (const CalibrationRun& r : runs) {
+        const double j = (std::log(predicted_speedup(r, hi)) - std::log(predicted_speedup(r, lo))) / (2 * h);
+        const double rr = std::log(predicted_speedup(r, res.model) / r.target_speedup);
+        jj += j * j, ssr += rr * rr, jr += j * rr;
+    }
+    CHECK(std::abs(jr) < 1e-6 * std::sqrt(jj * ssr));  // stationary: J^T r = 0
+    CHECK(res.degrees_of_freedom == 7);
+    CHECK(res.parameters[0].std_error == doctest::Approx(std::sqrt(ssr / 7 / jj)).epsilon(1e-5));
+    CHECK(res.rms_log_error == doctest::Approx(std::sqrt(ssr / 8)).epsilon(1e-9));
+}
