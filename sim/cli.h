@@ -1,0 +1,26 @@
+// Command-line parsing for `simulate` (kept apart from main so it is tested).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+struct CliOptions {
+    bool help = false;
+    bool version = false;
+    bool calibrate = false;          // `simulate calibrate CONFIG.json`
+    std::string config;
+    std::optional<std::string> out;  // default out/<config name>/
+    unsigned threads = 0;            // 0: all cores
+    std::vector<std::string> sets;   // key.path=value overrides, in order
+    bool quiet = false;
+};
+
+// Throws InputError with a one-line message on bad arguments.
+[[nodiscard]] CliOptions parse_cli(const std::vector<std::string>& args);
+
+[[nodiscard]] std::string cli_help();
+
+}  // namespace rtc

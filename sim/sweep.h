@@ -1,0 +1,34 @@
+// Config overrides and sweeps on raw JSON, before any typed parsing:
+// - `--set key.path=value` sets a key by its dotted path (value parsed as
+//   JSON when it is valid JSON, else taken as a string);
+// - a `sweep` block maps dotted paths to lists; the run is repeated for the
+//   cartesian product of the lists. A list of objects is merged into the
+//   object at the path (so paired values such as count+radius form one axis).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+// Applies "a.b.c=value"; throws InputError naming `origin` on a malformed spec.
+void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin);
+
+// Sets (scalar/array) or merges (object) `value` at a dotted path.
+void set_by_path(nlohmann::json& config, const std::string& dotted_path,
+                 const nlohmann::json& value);
+
+struct SweepPoint {
+    nlohmann::json config;   // the config with this point's values applied, no `sweep` block
+    nlohmann::json values;   // {"<path>": value, ...} of this point (empty for a single run)
+    std::string label;       // "scene.count=1000 scene.tilt_deg=45", or "" for a single run
+};
+
+// Expands the `sweep` block (if any) into points, in a fixed order (the first
+// key varies slowest). Errors name `file` and the sweep key.
+[[nodiscard]] std::vector<SweepPoint> expand_sweep(const nlohmann::json& config,
+                                                   const std::string& file);
+
+}  // namespace rtc
