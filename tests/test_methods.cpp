@@ -1,0 +1,221 @@
+// The heart of the project: the reference and masquerade methods built from
+// the same geometry return the same closest hit for every ray (same primitive,
+// same t bit for bit), under both IS schedules, for every primitive kind, with
+// and without a mesh; and their all-candidates IS call counts equal brute
+// force over the primitives' AABBs and OBBs.
+#include "core_test_util.h"
+#include "sim/trace_ray.h"
+
+#include <doctest/doctest.h>
+
+#include <bit>
+
+using namespace rtc;
+using rtc::test::Rng;
+
+namespace {
+
+Vec3 thin_offset(Rng& rng, float lo, float hi) { return rng.direction() * rng.uniform(lo, hi); }
+
+PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n) {
+    switch (kind) {
+        case PrimitiveKind::Cylinder: {
+            std::vector<Cylinder> v;
+            for (int i = 0; i < n; ++i) {
+                const Vec3 p = rng.point(-1, 1);
+                v.push_back({p, p + thin_offset(rng, 0.1f, 0.6f), rng.uniform(0.002f, 0.03f)});
+            }
+            return v;
+        }
+        case PrimitiveKind::Capsule: {
+            std::vector<Capsule> v;
+            for (int i = 0; i < n; ++i) {
+                const Vec3 p = rng.point(-1, 1);
+                v.push_back({p, p + thin_offset(rng, 0.0f, 0.6f), rng.uniform(0.002f, 0.03f)});
+            }
+            return v;
+        }
+        case PrimitiveKind::Link: {
+            std::vector<Link> v;
+            for (int i = 0; i < n; ++i) {
+                const Vec3 p = rng.point(-1, 1);
+                v.push_back({p, rng.uniform(0.002f, 0.03f), p + thin_offset(rng, 0.0f, 0.6f),
+                             rng.uniform(0.002f, 0.03f)});
+            }
+            return v;
+        }
+        case PrimitiveKind::Phantom: {
+            std::vector<PhantomCurve> v;
+            for (int i = 0; i < n; ++i) {
+                PhantomCurve c;
+                // Hair-like: a mostly straight span with a gentle bend.
+                c.cp[0] = rng.point(-1, 1);
+                const Vec3 step = thin_offset(rng, 0.05f, 0.2f);
+                for (int k = 1; k < 4; ++k) c.cp[k] = c.cp[k - 1] + step + thin_offset(rng, 0.0f, 0.02f);
+                for (float& r : c.radius) r = rng.uniform(0.003f, 0.02f);
+                v.push_back(c);
+            }
+            return v;
+        }
+    }
+    return {};
+}
+
+Geometry random_geometry(Rng& rng, PrimitiveKind kind, int n, bool mesh) {
+    Geometry g;
+    g.kind = kind;
+    g.prims = random_prims(rng, kind, n);
+    if (mesh)
+        for (const auto& t : rtc::test::random_triangles(rng, 150, 0.15f)) g.triangles.push_back({t.a, t.b, t.c});
+    return g;
+}
+
+MethodOptions options(int width) {
+    MethodOptions o;
+    o.custom_blas.width = o.tlas.width = o.triangle_blas.width = width;
+    o.triangle_blas.max_leaf_size = 4;
+    return o;
+}
+
+template <TraversalMode Mode = TraversalMode::Closest>
+TraceHit trace_any(const MethodAccel& m, const Geometry& g, const Ray& ray, CountingSink& sink,
+                   IsSchedule schedule) {
+    TraceOptions o;
+    o.schedule = schedule;
+    TraceScratch scratch;
+    return std::visit(
+        [&](const auto& prims) {
+            using Prim = typename std::decay_t<decltype(prims)>::value_type;
+            return trace_ray<Mode, Prim>(m, prims, g.triangles, ray, sink, o, scratch);
+        },
+        g.prims);
+}
+
+Ray scene_ray(Rng& rng) {
+    // Mostly rays from outside; one in eight starts inside the primitive cloud.
+    Ray r = rtc::test::random_ray(rng);
+    if (rng.uniform() < 0.125f) r.origin = rng.point(-1, 1);
+    return r;
+}
+
+constexpr PrimitiveKind kKinds[] = {PrimitiveKind::Cylinder, PrimitiveKind::Capsule, PrimitiveKind::Link,
+                                    PrimitiveKind::Phantom};
+
+}  // namespace
+
+TEST_CASE("methods: ref and obb return the same closest hit for every ray") {
+    for (const PrimitiveKind kind : kKinds) {
+        for (const bool mesh : {false, true}) {
+            for (const int width : {2, 4, 8}) {
+                Rng rng(1000 + static_cast<int>(kind) * 10 + mesh * 3 + width);
+                const Geometry g = random_geometry(rng, kind, 600, mesh);
+                const MethodAccel ref = build_method(Method::Ref, g, options(width));
+                const MethodAccel obb = build_method(Method::Obb, g, options(width));
+                CAPTURE(kind_name(kind));
+                CAPTURE(mesh);
+                CAPTURE(width);
+                int hits = 0, mismatches = 0;
+                std::uint64_t ref_calls = 0, obb_calls = 0;
+                for (int i = 0; i < 1500; ++i) {
+                    const Ray ray = scene_ray(rng);
+                    for (const IsSchedule schedule : {IsSchedule::Immediate, IsSchedule::Deferred}) {
+                        CountingSink sr, so;
+                        const TraceHit a = trace_any(ref, g, ray, sr, schedule);
+                        const TraceHit b = trace_any(obb, g, ray, so, schedule);
+                        const bool same = a.geom == b.geom && a.prim == b.prim &&
+                                          std::bit_cast<std::uint32_t>(a.t) == std::bit_cast<std::uint32_t>(b.t);
+                        mismatches += !same;
+                        hits += a.hit() && schedule == IsSchedule::Immediate;
+                        if (schedule == IsSchedule::Immediate) {
+                            ref_calls += sr.ray[Event::IsCall];
+                            obb_calls += so.ray[Event::IsCall];
+                        }
+                        CHECK(sr.ray[Event::ContextSwitch] == sr.ray[Event::IsCall]);
+                        CHECK(sr.ray[Event::Ray] == 1);
+                    }
+                }
+                CHECK(mismatches == 0);
+                CHECK(hits > 100);
+                // The point of the method: far fewer intersection-program calls.
+                CHECK(obb_calls < ref_calls);
+            }
+        }
+    }
+}
+
+TEST_CASE("methods: deferred and immediate scheduling agree on hits, deferred calls more programs") {
+    Rng rng(77);
+    const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 2000, true);
+    const MethodAccel ref = build_method(Method::Ref, g, options(4));
+    std::uint64_t immediate_calls = 0, deferred_calls = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const Ray ray = scene_ray(rng);
+        CountingSink si, sd;
+        const TraceHit a = trace_any(ref, g, ray, si, IsSchedule::Immediate);
+        const TraceHit b = trace_any(ref, g, ray, sd, IsSchedule::Deferred);
+        CHECK(a.prim == b.prim);
+        CHECK(a.t == b.t);
+        CHECK(sd.ray[Event::IsCall] >= si.ray[Event::IsCall]);
+        immediate_calls += si.ray[Event::IsCall];
+        deferred_calls += sd.ray[Event::IsCall];
+    }
+    CHECK(deferred_calls > immediate_calls);
+}
+
+TEST_CASE("methods: all-candidates IS calls equal the AABBs (ref) and OBBs (obb) a ray pierces") {
+    for (const PrimitiveKind kind : kKinds) {
+        Rng rng(500 + static_cast<int>(kind));
+        const Geometry g = random_geometry(rng, kind, 800, false);
+        const MethodAccel ref = build_method(Method::Ref, g, options(4));
+        const MethodAccel obb = build_method(Method::Obb, g, options(4));
+        CAPTURE(kind_name(kind));
+        std::uint64_t total_ref = 0, total_obb = 0;
+        for (int i = 0; i < 300; ++i) {
+            const Ray ray = scene_ray(rng);
+            CountingSink sr, so;
+            (void)trace_any<TraversalMode::AllCandidates>(ref, g, ray, sr, IsSchedule::Immediate);
+            (void)trace_any<TraversalMode::AllCandidates>(obb, g, ray, so, IsSchedule::Immediate);
+            std::uint32_t aabbs = 0, obbs = 0;
+            const Vec3 inv = safe_inverse(ray.direction);
+            std::visit(
+                [&](const auto& prims) {
+                    for (std::size_t p = 0; p < prims.size(); ++p) {
+                        aabbs += intersect_box(bounds(prims[p]), ray.origin, inv, ray.tmin, ray.tmax) < kInfinity;
+                        // The same float operations the hardware model performs at an instance.
+                        const Instance& inst = obb.accel.instances[p];
+                        const Ray o = inst.object_from_world.ray(ray);
+                        obbs += intersect_box(kUnitBox, o.origin, safe_inverse(o.direction), o.tmin, o.tmax) < kInfinity;
+                    }
+                },
+                g.prims);
+            CHECK(sr.ray[Event::IsCall] == aabbs);
+            CHECK(so.ray[Event::IsCall] == obbs);
+            total_ref += aabbs;
+            total_obb += obbs;
+        }
+        CHECK(total_obb < total_ref);
+        CHECK(total_obb > 0);
+    }
+}
+
+TEST_CASE("methods: instance counts and structure of each method") {
+    Rng rng(3);
+    const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 100, true);
+    CHECK(instance_count(Method::Ref, g) == 2);
+    CHECK(instance_count(Method::Obb, g) == 101);
+    const MethodAccel obb = build_method(Method::Obb, g, options(4));
+    CHECK(obb.accel.instances.size() == 101);
+    CHECK(obb.accel.blases[0].primitive_count() == 1);  // the unit-box BLAS
+    CHECK(obb.blas_kind[1] == BlasKind::Triangles);
+    // Instance i's transform is primitive i's OBB: the capsule's end-cap tips
+    // (the points of the capsule farthest along its axis) lie inside it.
+    const auto& caps = std::get<std::vector<Capsule>>(g.prims);
+    for (std::size_t i = 0; i < caps.size(); ++i) {
+        const Obb box{obb.accel.instances[i].world_from_object};
+        const Vec3 axis = caps[i].p1 - caps[i].p0;
+        const float len = glm::length(axis);
+        const Vec3 dir = len > 0 ? axis / len : Vec3(0, 0, 1);
+        CHECK(box.contains(caps[i].p0 - dir * caps[i].radius));
+        CHECK(box.contains(caps[i].p1 + dir * caps[i].radius));
+    }
+}
