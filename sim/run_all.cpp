@@ -1,6 +1,10 @@
 #include "sim/run_all.h"
 
+#include "sim/calibrate.h"
+#include "sim/calibrate_config.h"
+#include "sim/calibrate_report.h"
 #include "sim/json_file.h"
+#include "sim/json_reader.h"
 #include "sim/plot_svg.h"
 #include "sim/report.h"
 #include "sim/sweep.h"
@@ -34,6 +38,55 @@ void make_dir(const std::string& dir) {
     if (!f) throw InputError(dir + ": output directory is not writable");
     std::fclose(f);
     std::filesystem::remove(probe, ec);
+}
+
+// `simulate calibrate`: fit the config's chosen costs to its target speedups
+// by re-pricing the counts each run recorded (no tracing again).
+void calibrate_runs(const std::vector<RunResult>& runs, const nlohmann::json& config,
+                    const std::string& file, const std::string& out, bool quiet) {
+    if (!config.contains("calibrate"))
+        throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
+    const CalibrateDesc desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
+    std::vector<CalibrationRun> fit_runs;
+    std::vector<std::string> skipped;
+    for (const RunResult& r : runs) {
+        const std::string label = r.sweep_label.empty() ? r.config.name : r.sweep_label;
+        const CalibrationTarget* target = find_target(desc, r.sweep_values, label);
+        const MethodRun* ref = r.find(Method::Ref);
+        const MethodRun* obb = r.find(Method::Obb);
+        if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
+            skipped.push_back(label);
+            continue;
+        }
+        fit_runs.push_back({label, ref->frame.totals, obb->frame.totals, target->speedup, target->weight});
+    }
+    std::vector<nlohmann::json> values;
+    std::vector<std::string> labels;
+    for (const RunResult& r : runs) {
+        values.push_back(r.sweep_values);
+        labels.push_back(r.sweep_label.empty() ? r.config.name : r.sweep_label);
+    }
+    const auto unmatched = unmatched_targets(desc, values, labels);
+    if (!unmatched.empty())
+        throw InputError(file + ": /calibrate/targets: no run matches " + unmatched.front());
+    if (fit_runs.empty()) throw InputError(file + ": /calibrate/targets: no run has a target");
+    CalibrationResult result;
+    try {
+        result = calibrate(fit_runs, runs.front().costs.front(), desc.parameters, calibration_options(desc));
+    } catch (const std::invalid_argument& e) {
+        throw InputError(file + ": /calibrate: " + e.what());
+    }
+    const std::string report = calibration_report_markdown(result);
+    write_text_file((std::filesystem::path(out) / "calibration.md").string(), report);
+    const std::string preset = calibrated_preset_json(result);
+    write_text_file((std::filesystem::path(out) / "calibrated_preset.json").string(), preset);
+    if (!desc.output.empty()) {
+        write_text_file(desc.output, preset);
+        if (!quiet) std::cerr << "fitted preset written to " << desc.output << "\n";
+    }
+    std::cout << "\n" << report;
+    if (!skipped.empty() && !quiet)
+        std::cerr << skipped.size() << " run(s) without a target were not fitted\n";
 }
 
 }  // namespace
@@ -79,6 +132,7 @@ int run_all(const CliOptions& cli) {
         write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
     }
     write_sweep_plots(runs, out);
+    if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);
     std::cout << summary_table(runs).to_console();
     if (!cli.quiet) std::cerr << "outputs in " << out << "/\n";
     return 0;

@@ -107,11 +107,28 @@ Strands curves_from_file(const JsonReader& c) {
     return std::move(loaded.strands);
 }
 
+void append_strands(Strands& into, const Strands& more) {
+    const auto base = static_cast<std::uint32_t>(into.points.size());
+    into.points.insert(into.points.end(), more.points.begin(), more.points.end());
+    into.radii.insert(into.radii.end(), more.radii.begin(), more.radii.end());
+    for (std::size_t i = 1; i < more.offsets.size(); ++i) into.offsets.push_back(base + more.offsets[i]);
+}
+
 Scene file_scene(const JsonReader& j) {
     j.allow_only({"type", "name", "curves", "mesh"});
     if (!j.has("curves") && !j.has("mesh")) j.fail("", "a file scene needs \"curves\", \"mesh\" or both");
     Scene s;
-    if (j.has("curves")) {
+    if (j.has("curves") && j.json()["curves"].is_array()) {
+        // Several curve files (e.g. one SWC per neuron) form one scene.
+        const nlohmann::json& list = j.json()["curves"];
+        if (list.empty()) j.fail("curves", "expected a curve object or a non-empty list of them");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const JsonReader c(list[i], j.file(), j.key_path("curves") + "/" + std::to_string(i));
+            c.require_object();
+            append_strands(s.strands, curves_from_file(c));
+        }
+        s.name = j.key_path("curves");
+    } else if (j.has("curves")) {
         const JsonReader c = j.child("curves");
         s.strands = curves_from_file(c);
         s.name = c.string("path", std::nullopt);

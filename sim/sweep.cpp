@@ -73,8 +73,10 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
                 p.values[axes[a].first] = v;
             }
         }
+        // Labels show scalar values only (a nested scene block would swamp them).
         for (const auto& [k, v] : p.values.items())
-            p.label += (p.label.empty() ? "" : " ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
+            if (v.is_primitive())
+                p.label += (p.label.empty() ? "" : " ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
         points.push_back(std::move(p));
         std::size_t a = axes.size();
         while (a > 0) {
