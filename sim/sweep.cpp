@@ -25,13 +25,13 @@ std::vector<std::string> split_path(const std::string& dotted) {
 }  // namespace
 
 void set_by_path(nlohmann::json& config, const std::string& dotted_path,
-                 const nlohmann::json& value) {
+                 const nlohmann::json& value, bool merge) {
     nlohmann::json* node = &config;
     for (const std::string& part : split_path(dotted_path)) {
         if (!node->is_object()) *node = nlohmann::json::object();
         node = &(*node)[part];
     }
-    if (value.is_object() && node->is_object())
+    if (merge && value.is_object() && node->is_object())
         node->merge_patch(value);
     else
         *node = value;
@@ -66,7 +66,7 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
         SweepPoint p{base, nlohmann::json::object(), ""};
         for (std::size_t a = 0; a < axes.size(); ++a) {
             const nlohmann::json& v = axes[a].second[index[a]];
-            set_by_path(p.config, axes[a].first, v);
+            set_by_path(p.config, axes[a].first, v, /*merge=*/true);
             if (v.is_object()) {  // a paired axis: record each member separately
                 for (const auto& [k, x] : v.items()) p.values[axes[a].first + "." + k] = x;
             } else {

@@ -1,6 +1,6 @@
 // Config overrides and sweeps on raw JSON, before any typed parsing:
 // - `--set key.path=value` sets a key by its dotted path (value parsed as
-//   JSON when it is valid JSON, else taken as a string);
+//   JSON when it is valid JSON, else taken as a string; an object replaces);
 // - a `sweep` block maps dotted paths to lists; the run is repeated for the
 //   cartesian product of the lists. A list of objects is merged into the
 //   object at the path (so paired values such as count+radius form one axis).
@@ -16,9 +16,11 @@ namespace rtc {
 // Applies "a.b.c=value"; throws InputError naming `origin` on a malformed spec.
 void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin);
 
-// Sets (scalar/array) or merges (object) `value` at a dotted path.
+// Sets `value` at a dotted path; with `merge`, an object value is merged into
+// an object already there (sweep axes pairing several keys) instead of
+// replacing it (--set).
 void set_by_path(nlohmann::json& config, const std::string& dotted_path,
-                 const nlohmann::json& value);
+                 const nlohmann::json& value, bool merge = false);
 
 struct SweepPoint {
     nlohmann::json config;   // the config with this point's values applied, no `sweep` block
