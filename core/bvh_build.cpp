@@ -119,33 +119,37 @@ struct Split {
 };
 
 // The binned SAH sweep: for every axis and plane, the cost of splitting there.
-Split find_sah_split(const Bins& bins, const BinMap& map, std::uint32_t count, float area,
-                     const BuildOptions& o) {
+// Only planes just after an occupied bin are priced: a plane after an empty
+// bin splits the same primitives as the one before it, so it has bit for bit
+// the same cost and would lose the tie anyway. This keeps small nodes cheap.
+Split find_sah_split(const Bins& bins, const BinMap& map, float area, const BuildOptions& o) {
+    const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
     Split best;
     for (int axis = 0; axis < 3; ++axis) {
         if (!map.active[axis]) continue;
+        std::array<int, kMaxBins> used;  // occupied bins, in order
+        int m = 0;
+        for (int b = 0; b < map.bins; ++b)
+            if (bins.count[axis][b] > 0) used[m++] = b;
         // Right-to-left sweep stores the cost of each right part.
-        std::array<float, kMaxBins> right_cost{};
+        std::array<float, kMaxBins> right_cost;
         Aabb acc;
         std::uint32_t n = 0;
-        for (int b = map.bins - 1; b > 0; --b) {
-            acc.extend(bins.box[axis][b]);
-            n += bins.count[axis][b];
-            right_cost[b] = acc.surface_area() * static_cast<float>(n);
+        for (int j = m - 1; j > 0; --j) {
+            acc.extend(bins.box[axis][used[j]]);
+            n += bins.count[axis][used[j]];
+            right_cost[j] = acc.surface_area() * static_cast<float>(n);
         }
         acc = {};
         n = 0;
-        for (int b = 1; b < map.bins; ++b) {
-            acc.extend(bins.box[axis][b - 1]);
-            n += bins.count[axis][b - 1];
-            const std::uint32_t right_n = count - n;
-            if (n == 0 || right_n == 0) continue;
-            const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
+        for (int j = 1; j < m; ++j) {  // plane after bin used[j - 1]
+            acc.extend(bins.box[axis][used[j - 1]]);
+            n += bins.count[axis][used[j - 1]];
             const float cost =
                 o.traversal_cost +
-                o.intersection_cost * (acc.surface_area() * static_cast<float>(n) + right_cost[b]) *
+                o.intersection_cost * (acc.surface_area() * static_cast<float>(n) + right_cost[j]) *
                     inv_area;
-            if (cost < best.cost) best = {axis, b, cost};  // strict: ties keep the first
+            if (cost < best.cost) best = {axis, used[j - 1] + 1, cost};  // strict: ties keep the first
         }
     }
     return best;
@@ -179,19 +183,21 @@ public:
         node.lo = t.bounds.box.lo;
         node.hi = t.bounds.box.hi;
 
-        const bool fits_leaf = count <= static_cast<std::uint32_t>(o.max_leaf_size);
-        const BinMap map(t.bounds.cbox, s_.bins);
-        Split best;
-        if (count > 1 && o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth)
-            best = find_sah_split(bin(src, t, map, threads), map, count,
-                                  t.bounds.box.surface_area(), o);
-        const float leaf_cost = o.intersection_cost * static_cast<float>(count);
-        if (count == 1 || (fits_leaf && (best.axis < 0 || leaf_cost <= best.cost))) {
+        const auto make_leaf = [&] {
             node.left_or_first = t.begin;
             node.right_or_count = count | BinaryNode::kLeafBit;
             for (std::uint32_t i = t.begin; i < t.end; ++i) s_.prim_ids[i] = src[i].id;
             return false;
-        }
+        };
+        if (count == 1) return make_leaf();
+
+        const bool fits_leaf = count <= static_cast<std::uint32_t>(o.max_leaf_size);
+        const BinMap map(t.bounds.cbox, s_.bins);
+        Split best;
+        if (o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth)
+            best = find_sah_split(bin(src, t, map, threads), map, t.bounds.box.surface_area(), o);
+        const float leaf_cost = o.intersection_cost * static_cast<float>(count);
+        if (fits_leaf && (best.axis < 0 || leaf_cost <= best.cost)) return make_leaf();
         const std::uint32_t mid = best.axis >= 0
                                       ? partition(src, dst, t, map, best, left.bounds, right.bounds, threads)
                                       : median_split(src, dst, t, left.bounds, right.bounds);
@@ -249,6 +255,17 @@ private:
     std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
                             const Split& best, Bounds& left, Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
+        if (n == 1) {
+            std::uint32_t l = t.begin, r = t.begin;
+            for (int b = 0; b < best.bin; ++b) r += chunk_bins_[0].count[best.axis][b];
+            left = right = {};
+            for (std::uint32_t i = t.begin; i < t.end; ++i) {
+                const bool goes_left = map.of(src[i].centroid, best.axis) < best.bin;
+                dst[goes_left ? l++ : r++] = src[i];
+                (goes_left ? left : right).add(src[i]);
+            }
+            return l;
+        }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
         std::vector<std::uint32_t> left_at(n + 1, 0);
         for (std::uint32_t k = 0; k < n; ++k)
