@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -25,11 +26,39 @@
 namespace rtc {
 namespace {
 
+// Four-lane float vectors (GCC/Clang vector extensions: SSE on x86-64, plain
+// code elsewhere) for the per-primitive loops; lane 3 is ignored.
+using V4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+
+// A box in lanes, extended with exactly the comparisons of Aabb::extend (so
+// ties between -0 and +0 resolve the same way).
+struct Box4 {
+    V4 lo = {kInfinity, kInfinity, kInfinity, kInfinity};
+    V4 hi = -lo;
+    void extend(V4 blo, V4 bhi) {
+        lo = blo < lo ? blo : lo;
+        hi = hi < bhi ? bhi : hi;
+    }
+    [[nodiscard]] Aabb aabb() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
 // Trivial types so that the large buffers below are allocated, not zeroed.
-struct Ref {
-    Vec3 lo, hi, centroid;
+// Each vector starts a 16-byte lane group; the centroid's spare lane is zero
+// so that arithmetic on it never meets a denormal.
+struct alignas(16) Ref {
+    Vec3 lo;
     std::uint32_t id;
+    Vec3 hi;
+    float unused;
+    Vec3 centroid;
+    float zero;
     [[nodiscard]] Aabb box() const { return {lo, hi}; }
+    [[nodiscard]] V4 lanes(const Vec3& member) const {  // member of this Ref and the word after it
+        V4 v;
+        std::memcpy(&v, &member, sizeof v);
+        return v;
+    }
 };
 
 struct BinaryNode {
@@ -88,27 +117,37 @@ struct BinMap {
 };
 
 struct Bins {
-    std::array<std::array<Aabb, kMaxBins>, 3> box;
+    std::array<std::array<Box4, kMaxBins>, 3> box;
     std::array<std::array<std::uint32_t, kMaxBins>, 3> count;
 
     void reset(int bins) {
         for (int axis = 0; axis < 3; ++axis)
             for (int b = 0; b < bins; ++b) box[axis][b] = {}, count[axis][b] = 0;
     }
+    // All three axes at once, branch-free: an axis without spread bins
+    // everything into bin 0 and is never priced. The bin index is computed
+    // lane-wise exactly as BinMap::of does it.
     void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
+        const V4 lo{map.lo.x, map.lo.y, map.lo.z, 0.0f};
+        const V4 scale{map.scale.x, map.scale.y, map.scale.z, 0.0f};
+        const I4 zero{}, last = zero + (map.bins - 1);
         for (std::uint32_t i = begin; i < end; ++i) {
-            const Aabb rbox = refs[i].box();
+            const Ref& r = refs[i];
+            const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
+            I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo) * scale, I4);
+            b = b < zero ? zero : b;
+            b = b > last ? last : b;
             for (int axis = 0; axis < 3; ++axis) {
-                if (!map.active[axis]) continue;
-                const int b = map.of(refs[i].centroid, axis);
-                box[axis][b].extend(rbox);
-                ++count[axis][b];
+                box[axis][b[axis]].extend(rlo, rhi);
+                ++count[axis][b[axis]];
             }
         }
     }
     void add(const Bins& o, int bins) {  // o's primitives come after ours
         for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < bins; ++b) box[axis][b].extend(o.box[axis][b]), count[axis][b] += o.count[axis][b];
+            for (int b = 0; b < bins; ++b)
+                box[axis][b].extend(o.box[axis][b].lo, o.box[axis][b].hi),
+                    count[axis][b] += o.count[axis][b];
     }
 };
 
@@ -136,14 +175,14 @@ Split find_sah_split(const Bins& bins, const BinMap& map, float area, const Buil
         Aabb acc;
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
-            acc.extend(bins.box[axis][used[j]]);
+            acc.extend(bins.box[axis][used[j]].aabb());
             n += bins.count[axis][used[j]];
             right_cost[j] = acc.surface_area() * static_cast<float>(n);
         }
         acc = {};
         n = 0;
         for (int j = 1; j < m; ++j) {  // plane after bin used[j - 1]
-            acc.extend(bins.box[axis][used[j - 1]]);
+            acc.extend(bins.box[axis][used[j - 1]].aabb());
             n += bins.count[axis][used[j - 1]];
             const float cost =
                 o.traversal_cost +
@@ -258,12 +297,17 @@ private:
         if (n == 1) {
             std::uint32_t l = t.begin, r = t.begin;
             for (int b = 0; b < best.bin; ++b) r += chunk_bins_[0].count[best.axis][b];
-            left = right = {};
+            std::array<Box4, 2> box, cbox;  // left, right
             for (std::uint32_t i = t.begin; i < t.end; ++i) {
-                const bool goes_left = map.of(src[i].centroid, best.axis) < best.bin;
-                dst[goes_left ? l++ : r++] = src[i];
-                (goes_left ? left : right).add(src[i]);
+                const Ref& ref = src[i];
+                const bool goes_left = map.of(ref.centroid, best.axis) < best.bin;
+                dst[goes_left ? l++ : r++] = ref;
+                box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
+                const V4 c = ref.lanes(ref.centroid);
+                cbox[!goes_left].extend(c, c);
             }
+            left = {box[0].aabb(), cbox[0].aabb()};
+            right = {box[1].aabb(), cbox[1].aabb()};
             return l;
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
@@ -327,7 +371,7 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
             // The centre as Aabb::center() computes it.
             const Vec3 c = centroids.empty() ? b.center() : centroids[i];
             if (first_bad[k] == n && (!b.finite() || !finite(c) || b.empty())) first_bad[k] = i;
-            refs[i] = {b.lo, b.hi, c, static_cast<std::uint32_t>(i)};
+            refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
             parts[k].add(refs[i]);
         }
     }, 1);
