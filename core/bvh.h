@@ -43,6 +43,8 @@ struct BuildOptions {
     SplitStrategy strategy = SplitStrategy::Sah;
     float traversal_cost = 1.0f;     // SAH: relative cost of visiting a node...
     float intersection_cost = 1.0f;  // ...and of testing one primitive
+    // Threads the build may use (0 = all cores); the tree does not depend on it.
+    int threads = 0;
 };
 
 struct Bvh {
@@ -63,7 +65,8 @@ struct Bvh {
 
 // Builds a BVH over `boxes` (one per primitive), splitting on `centroids`
 // (box centres when empty). Deterministic: the same input gives the same tree,
-// ties go to the smallest axis, bin and primitive index. Throws
+// ties go to the smallest axis, bin and primitive index, whatever the thread
+// count. Throws
 // std::invalid_argument naming the first primitive whose box or centroid is
 // NaN or infinite.
 [[nodiscard]] Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options = {},

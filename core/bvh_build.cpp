@@ -3,27 +3,153 @@
 // the requested width by repeatedly opening the child with the largest surface
 // area (the usual collapse used for wide hardware BVHs, e.g. Ylitie et al.
 // 2017 use a cost-based variant).
+//
+// Speed without changing the tree: primitives travel as packed references
+// (box, centroid, id) that each split stably partitions from one buffer into
+// the other, so every pass reads memory in order, and a node's bounds come
+// from its parent's partition pass. Large nodes bin and partition in chunks on
+// all threads; below a size threshold the subtrees are built as independent
+// tasks, each into its own slice of the node array. Every reduction is folded
+// in primitive order, so the tree (down to the sign of zero in a box) is the
+// same for any thread count, and the same as the plain serial algorithm.
 #include "core/bvh.h"
+#include "core/parallel.h"
 
 #include <algorithm>
 #include <array>
+#include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace rtc {
 namespace {
 
-struct BinaryNode {
-    Aabb box;
-    std::uint32_t left = 0, right = 0;  // inner node children
-    std::uint32_t first = 0, count = 0; // leaf: range in the id array (count > 0)
-    [[nodiscard]] bool is_leaf() const { return count > 0; }
+// Four-lane float vectors (GCC/Clang vector extensions: SSE on x86-64, plain
+// code elsewhere) for the per-primitive loops; lane 3 is ignored.
+using V4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+
+// A box in lanes, extended with exactly the comparisons of Aabb::extend (so
+// ties between -0 and +0 resolve the same way).
+struct Box4 {
+    V4 lo = {kInfinity, kInfinity, kInfinity, kInfinity};
+    V4 hi = -lo;
+    void extend(V4 blo, V4 bhi) {
+        lo = blo < lo ? blo : lo;
+        hi = hi < bhi ? bhi : hi;
+    }
+    [[nodiscard]] Aabb aabb() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
+
+// Trivial types so that the large buffers below are allocated, not zeroed.
+// Each vector starts a 16-byte lane group; the centroid's spare lane is zero
+// so that arithmetic on it never meets a denormal.
+struct alignas(16) Ref {
+    Vec3 lo;
+    std::uint32_t id;
+    Vec3 hi;
+    float unused;
+    Vec3 centroid;
+    float zero;
+    [[nodiscard]] Aabb box() const { return {lo, hi}; }
+    [[nodiscard]] V4 lanes(const Vec3& member) const {  // member of this Ref and the word after it
+        V4 v;
+        std::memcpy(&v, &member, sizeof v);
+        return v;
+    }
+};
+
+struct BinaryNode {
+    static constexpr std::uint32_t kLeafBit = 0x80000000u;
+    Vec3 lo;
+    std::uint32_t left_or_first;   // inner: left child; leaf: first slot in prim_ids
+    Vec3 hi;
+    std::uint32_t right_or_count;  // inner: right child; leaf: count | kLeafBit
+    [[nodiscard]] Aabb box() const { return {lo, hi}; }
+    [[nodiscard]] bool is_leaf() const { return (right_or_count & kLeafBit) != 0; }
+};
+static_assert(std::is_trivially_default_constructible_v<Ref> &&
+              std::is_trivially_default_constructible_v<BinaryNode>);
 
 // Past this binary depth splits fall back to the object median, which bounds
 // the depth of any tree (and so the traversal stack) by kMaxSahDepth + log2(n).
 constexpr int kMaxSahDepth = 40;
 constexpr int kMaxBins = 64;
+// References per chunk of a node's range binned or partitioned by one thread.
+constexpr std::uint32_t kChunk = 16384;
+// Subtrees at most this big (or n / (8 threads)) are built as one serial task.
+constexpr std::uint32_t kMinTask = 4096;
+
+struct Bounds {
+    Aabb box, cbox;  // of the primitives' boxes, of their centroids
+    void add(const Ref& r) {
+        box.extend(r.box());
+        cbox.extend(r.centroid);
+    }
+    void add(const Bounds& b) {
+        box.extend(b.box);
+        cbox.extend(b.cbox);
+    }
+};
+
+struct Task {
+    std::uint32_t node, begin, end;
+    int depth;  // the references of the range live in buffer depth % 2
+    Bounds bounds;
+};
+
+// Maps a centroid to its bin along one axis of the node's centroid box.
+struct BinMap {
+    int bins;
+    Vec3 lo, scale;
+    std::array<bool, 3> active;  // axes along which the centroids spread
+    BinMap(const Aabb& cbox, int n_bins) : bins(n_bins), lo(cbox.lo) {
+        for (int axis = 0; axis < 3; ++axis) {
+            active[axis] = cbox.hi[axis] > cbox.lo[axis];
+            scale[axis] = static_cast<float>(bins) / (cbox.hi[axis] - cbox.lo[axis]);
+        }
+    }
+    [[nodiscard]] int of(const Vec3& c, int axis) const {
+        return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
+    }
+};
+
+struct Bins {
+    std::array<std::array<Box4, kMaxBins>, 3> box;
+    std::array<std::array<std::uint32_t, kMaxBins>, 3> count;
+
+    void reset(int bins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bins; ++b) box[axis][b] = {}, count[axis][b] = 0;
+    }
+    // All three axes at once, branch-free: an axis without spread bins
+    // everything into bin 0 and is never priced. The bin index is computed
+    // lane-wise exactly as BinMap::of does it.
+    void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
+        const V4 lo{map.lo.x, map.lo.y, map.lo.z, 0.0f};
+        const V4 scale{map.scale.x, map.scale.y, map.scale.z, 0.0f};
+        const I4 zero{}, last = zero + (map.bins - 1);
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const Ref& r = refs[i];
+            const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
+            I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo) * scale, I4);
+            b = b < zero ? zero : b;
+            b = b > last ? last : b;
+            for (int axis = 0; axis < 3; ++axis) {
+                box[axis][b[axis]].extend(rlo, rhi);
+                ++count[axis][b[axis]];
+            }
+        }
+    }
+    void add(const Bins& o, int bins) {  // o's primitives come after ours
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bins; ++b)
+                box[axis][b].extend(o.box[axis][b].lo, o.box[axis][b].hi),
+                    count[axis][b] += o.count[axis][b];
+    }
+};
 
 struct Split {
     int axis = -1;
@@ -31,180 +157,307 @@ struct Split {
     float cost = kInfinity;
 };
 
-class BinaryBuilder {
-public:
-    BinaryBuilder(std::span<const Aabb> boxes, std::span<const Vec3> centroids,
-                  const BuildOptions& o)
-        : boxes_(boxes), centroids_(centroids), o_(o) {}
-
-    std::vector<BinaryNode> build(std::vector<std::uint32_t>& ids) {
-        ids.resize(boxes_.size());
-        for (std::uint32_t i = 0; i < ids.size(); ++i) ids[i] = i;
-        ids_ = &ids;
-        if (ids.empty()) return nodes_;
-        nodes_.reserve(2 * ids.size());
-        nodes_.push_back({});
-        struct Task { std::uint32_t node, begin, end; int depth; };
-        std::vector<Task> stack{{0, 0, static_cast<std::uint32_t>(ids.size()), 0}};
-        while (!stack.empty()) {
-            const Task t = stack.back();
-            stack.pop_back();
-            const std::uint32_t mid = split(t.node, t.begin, t.end, t.depth);
-            if (mid == t.begin) continue;  // became a leaf
-            const auto left = static_cast<std::uint32_t>(nodes_.size());
-            nodes_.push_back({});
-            nodes_.push_back({});
-            nodes_[t.node].left = left;
-            nodes_[t.node].right = left + 1;
-            stack.push_back({left + 1, mid, t.end, t.depth + 1});
-            stack.push_back({left, t.begin, mid, t.depth + 1});
+// The binned SAH sweep: for every axis and plane, the cost of splitting there.
+// Only planes just after an occupied bin are priced: a plane after an empty
+// bin splits the same primitives as the one before it, so it has bit for bit
+// the same cost and would lose the tie anyway. This keeps small nodes cheap.
+Split find_sah_split(const Bins& bins, const BinMap& map, float area, const BuildOptions& o) {
+    const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
+    Split best;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!map.active[axis]) continue;
+        std::array<int, kMaxBins> used;  // occupied bins, in order
+        int m = 0;
+        for (int b = 0; b < map.bins; ++b)
+            if (bins.count[axis][b] > 0) used[m++] = b;
+        // Right-to-left sweep stores the cost of each right part.
+        std::array<float, kMaxBins> right_cost;
+        Aabb acc;
+        std::uint32_t n = 0;
+        for (int j = m - 1; j > 0; --j) {
+            acc.extend(bins.box[axis][used[j]].aabb());
+            n += bins.count[axis][used[j]];
+            right_cost[j] = acc.surface_area() * static_cast<float>(n);
         }
-        return std::move(nodes_);
+        acc = {};
+        n = 0;
+        for (int j = 1; j < m; ++j) {  // plane after bin used[j - 1]
+            acc.extend(bins.box[axis][used[j - 1]].aabb());
+            n += bins.count[axis][used[j - 1]];
+            const float cost =
+                o.traversal_cost +
+                o.intersection_cost * (acc.surface_area() * static_cast<float>(n) + right_cost[j]) *
+                    inv_area;
+            if (cost < best.cost) best = {axis, used[j - 1] + 1, cost};  // strict: ties keep the first
+        }
     }
+    return best;
+}
 
-private:
-    // Sets the node's box; makes it a leaf (returns begin) or partitions the
-    // range and returns the first index of the right half.
-    std::uint32_t split(std::uint32_t node, std::uint32_t begin, std::uint32_t end, int depth) {
-        auto& ids = *ids_;
-        Aabb box, cbox;
-        for (std::uint32_t i = begin; i < end; ++i) {
-            box.extend(boxes_[ids[i]]);
-            cbox.extend(centroids_[ids[i]]);
-        }
-        nodes_[node].box = box;
-        const std::uint32_t count = end - begin;
+// What every thread shares: the two reference buffers, the binary nodes (each
+// subtree task owns the slice [2 begin, 2 end - 1), which bounds its node
+// count; nodes above the tasks are appended after 2 n) and the output ids.
+struct Shared {
+    const BuildOptions& options;
+    int bins;
+    std::array<std::unique_ptr<Ref[]>, 2> refs;
+    std::vector<BinaryNode> nodes;
+    std::vector<std::uint32_t>& prim_ids;
+};
+
+// Splits nodes, either one big node with `threads` threads or a whole subtree
+// on the calling thread; owns the scratch this needs.
+class Splitter {
+public:
+    explicit Splitter(Shared& s) : s_(s) {}
+
+    // Sets t's node; returns false when it became a leaf, else fills the two
+    // children's tasks (their `node` left for the caller to assign).
+    bool split(const Task& t, Task& left, Task& right, unsigned threads) {
+        const std::uint32_t count = t.end - t.begin;
+        const Ref* src = s_.refs[t.depth % 2].get();
+        Ref* dst = s_.refs[(t.depth + 1) % 2].get();
+        const BuildOptions& o = s_.options;
+        BinaryNode& node = s_.nodes[t.node];
+        node.lo = t.bounds.box.lo;
+        node.hi = t.bounds.box.hi;
+
         const auto make_leaf = [&] {
-            nodes_[node].first = begin;
-            nodes_[node].count = count;
-            return begin;
+            node.left_or_first = t.begin;
+            node.right_or_count = count | BinaryNode::kLeafBit;
+            for (std::uint32_t i = t.begin; i < t.end; ++i) s_.prim_ids[i] = src[i].id;
+            return false;
         };
         if (count == 1) return make_leaf();
 
-        const bool fits_leaf = count <= static_cast<std::uint32_t>(o_.max_leaf_size);
+        const bool fits_leaf = count <= static_cast<std::uint32_t>(o.max_leaf_size);
+        const BinMap map(t.bounds.cbox, s_.bins);
         Split best;
-        if (o_.strategy == SplitStrategy::Sah && depth < kMaxSahDepth)
-            best = find_sah_split(begin, end, cbox, box.surface_area());
-        if (fits_leaf) {
-            const float leaf_cost = o_.intersection_cost * static_cast<float>(count);
-            if (best.axis < 0 || leaf_cost <= best.cost) return make_leaf();
-        }
-        if (best.axis >= 0) {
-            const int axis = best.axis;
-            const auto mid_it = std::stable_partition(
-                ids.begin() + begin, ids.begin() + end,
-                [&](std::uint32_t id) { return bin_of(centroids_[id], cbox, axis) < best.bin; });
-            return static_cast<std::uint32_t>(mid_it - ids.begin());
-        }
-        return median_split(begin, end, cbox);
+        if (o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth)
+            best = find_sah_split(bin(src, t, map, threads), map, t.bounds.box.surface_area(), o);
+        const float leaf_cost = o.intersection_cost * static_cast<float>(count);
+        if (fits_leaf && (best.axis < 0 || leaf_cost <= best.cost)) return make_leaf();
+        const std::uint32_t mid = best.axis >= 0
+                                      ? partition(src, dst, t, map, best, left.bounds, right.bounds, threads)
+                                      : median_split(src, dst, t, left.bounds, right.bounds);
+        left = {0, t.begin, mid, t.depth + 1, left.bounds};
+        right = {0, mid, t.end, t.depth + 1, right.bounds};
+        return true;
     }
 
-    [[nodiscard]] int bins() const { return std::clamp(o_.bins, 2, kMaxBins); }
-
-    [[nodiscard]] int bin_of(const Vec3& c, const Aabb& cbox, int axis) const {
-        const float extent = cbox.hi[axis] - cbox.lo[axis];
-        const float scale = static_cast<float>(bins()) / extent;
-        const int b = static_cast<int>((c[axis] - cbox.lo[axis]) * scale);
-        return std::clamp(b, 0, bins() - 1);
+    // Builds the subtree below t (whose node is the first of its slice);
+    // returns its node count.
+    std::uint32_t build_subtree(const Task& root) {
+        std::uint32_t next = root.node + 1;
+        std::vector<Task> stack{root};
+        while (!stack.empty()) {
+            const Task t = stack.back();
+            stack.pop_back();
+            Task left, right;
+            if (!split(t, left, right, 1)) continue;
+            left.node = next++;
+            right.node = next++;
+            s_.nodes[t.node].left_or_first = left.node;
+            s_.nodes[t.node].right_or_count = right.node;
+            stack.push_back(right);
+            stack.push_back(left);
+        }
+        return next - root.node;
     }
 
-    Split find_sah_split(std::uint32_t begin, std::uint32_t end, const Aabb& cbox, float area) {
-        const auto& ids = *ids_;
-        const int n_bins = bins();
-        Split best;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (!(cbox.hi[axis] > cbox.lo[axis])) continue;
-            std::array<Aabb, kMaxBins> bin_box{};
-            std::array<std::uint32_t, kMaxBins> bin_count{};
+private:
+    // Big nodes go in chunks of kChunk references, the last one taking the rest.
+    static std::uint32_t chunks(const Task& t, unsigned threads) {
+        const std::uint32_t count = t.end - t.begin;
+        return threads > 1 && count >= 2 * kChunk ? count / kChunk : 1;
+    }
+    static std::pair<std::uint32_t, std::uint32_t> chunk(const Task& t, std::size_t k,
+                                                         std::uint32_t n) {
+        const auto begin = t.begin + static_cast<std::uint32_t>(k) * kChunk;
+        return {begin, k + 1 == n ? t.end : begin + kChunk};
+    }
+
+    const Bins& bin(const Ref* src, const Task& t, const BinMap& map, unsigned threads) {
+        const std::uint32_t n = chunks(t, threads);
+        chunk_bins_.resize(std::max<std::size_t>(chunk_bins_.size(), n));
+        parallel_for(n, threads, [&](std::size_t k, unsigned) {
+            const auto [begin, end] = chunk(t, k, n);
+            chunk_bins_[k].reset(map.bins);
+            chunk_bins_[k].add(src, begin, end, map);
+        }, 1);
+        for (std::uint32_t k = 1; k < n; ++k) chunk_bins_[0].add(chunk_bins_[k], map.bins);
+        return chunk_bins_[0];  // chunks beyond the first keep their own counts
+    }
+
+    // Stable partition by bin into dst; each chunk's left part starts after the
+    // left parts of the chunks before it, known from the chunk's bin counts.
+    std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
+                            const Split& best, Bounds& left, Bounds& right, unsigned threads) {
+        const std::uint32_t n = chunks(t, threads);
+        if (n == 1) {
+            std::uint32_t l = t.begin, r = t.begin;
+            for (int b = 0; b < best.bin; ++b) r += chunk_bins_[0].count[best.axis][b];
+            std::array<Box4, 2> box, cbox;  // left, right
+            for (std::uint32_t i = t.begin; i < t.end; ++i) {
+                const Ref& ref = src[i];
+                const bool goes_left = map.of(ref.centroid, best.axis) < best.bin;
+                dst[goes_left ? l++ : r++] = ref;
+                box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
+                const V4 c = ref.lanes(ref.centroid);
+                cbox[!goes_left].extend(c, c);
+            }
+            left = {box[0].aabb(), cbox[0].aabb()};
+            right = {box[1].aabb(), cbox[1].aabb()};
+            return l;
+        }
+        // Left counts per chunk; chunk 0's bins were summed into the node's.
+        std::vector<std::uint32_t> left_at(n + 1, 0);
+        for (std::uint32_t k = 0; k < n; ++k)
+            for (int b = 0; b < best.bin; ++b) left_at[k + 1] += chunk_bins_[k].count[best.axis][b];
+        const std::uint32_t n_left = left_at[1];
+        for (std::uint32_t k = 1; k < n; ++k) left_at[1] -= left_at[k + 1];
+        left_at[0] = t.begin;
+        for (std::uint32_t k = 0; k < n; ++k) left_at[k + 1] += left_at[k];
+        std::vector<std::array<Bounds, 2>> parts(n);
+        parallel_for(n, threads, [&](std::size_t k, unsigned) {
+            const auto [begin, end] = chunk(t, k, n);
+            std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const int b = bin_of(centroids_[ids[i]], cbox, axis);
-                bin_box[b].extend(boxes_[ids[i]]);
-                ++bin_count[b];
+                const bool goes_left = map.of(src[i].centroid, best.axis) < best.bin;
+                dst[goes_left ? l++ : r++] = src[i];
+                parts[k][goes_left ? 0 : 1].add(src[i]);
             }
-            // Right-to-left sweep stores the cost of each right part.
-            std::array<float, kMaxBins> right_cost{};
-            Aabb acc;
-            std::uint32_t n = 0;
-            for (int b = n_bins - 1; b > 0; --b) {
-                acc.extend(bin_box[b]);
-                n += bin_count[b];
-                right_cost[b] = acc.surface_area() * static_cast<float>(n);
-            }
-            acc = {};
-            n = 0;
-            for (int b = 1; b < n_bins; ++b) {
-                acc.extend(bin_box[b - 1]);
-                n += bin_count[b - 1];
-                const std::uint32_t right_n = (end - begin) - n;
-                if (n == 0 || right_n == 0) continue;
-                const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
-                const float cost =
-                    o_.traversal_cost + o_.intersection_cost *
-                                            (acc.surface_area() * static_cast<float>(n) +
-                                             right_cost[b]) * inv_area;
-                if (cost < best.cost) best = {axis, b, cost};  // strict: ties keep the first
-            }
-        }
-        return best;
+        }, 1);
+        left = right = {};
+        for (const auto& p : parts) left.add(p[0]), right.add(p[1]);
+        return t.begin + n_left;
     }
 
     // Object median along the widest centroid axis; ties by primitive index.
-    std::uint32_t median_split(std::uint32_t begin, std::uint32_t end, const Aabb& cbox) {
-        auto& ids = *ids_;
-        const Vec3 e = cbox.extent();
+    static std::uint32_t median_split(const Ref* src, Ref* dst, const Task& t, Bounds& left,
+                                      Bounds& right) {
+        const Vec3 e = t.bounds.cbox.extent();
         const int axis = (e.x >= e.y && e.x >= e.z) ? 0 : (e.y >= e.z ? 1 : 2);
-        const std::uint32_t mid = begin + (end - begin) / 2;
-        std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end,
-                         [&](std::uint32_t a, std::uint32_t b) {
-                             const float ca = centroids_[a][axis], cb = centroids_[b][axis];
-                             return ca < cb || (ca == cb && a < b);
-                         });
+        const std::uint32_t mid = t.begin + (t.end - t.begin) / 2;
+        std::copy(src + t.begin, src + t.end, dst + t.begin);
+        std::nth_element(dst + t.begin, dst + mid, dst + t.end, [&](const Ref& a, const Ref& b) {
+            const float ca = a.centroid[axis], cb = b.centroid[axis];
+            return ca < cb || (ca == cb && a.id < b.id);
+        });
+        left = right = {};
+        for (std::uint32_t i = t.begin; i < mid; ++i) left.add(dst[i]);
+        for (std::uint32_t i = mid; i < t.end; ++i) right.add(dst[i]);
         return mid;
     }
 
-    std::span<const Aabb> boxes_;
-    std::span<const Vec3> centroids_;
-    const BuildOptions& o_;
-    std::vector<std::uint32_t>* ids_ = nullptr;
-    std::vector<BinaryNode> nodes_;
+    Shared& s_;
+    std::vector<Bins> chunk_bins_;
 };
+
+bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Fills buffer 0 with the references and returns the root's bounds; throws
+// for the first invalid primitive, whichever thread met it.
+Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centroids,
+            unsigned threads) {
+    const std::size_t n = boxes.size();
+    const std::size_t n_chunks = (n + kChunk - 1) / kChunk;
+    std::vector<Bounds> parts(n_chunks);
+    std::vector<std::size_t> first_bad(n_chunks, n);
+    Ref* refs = s.refs[0].get();
+    parallel_for(n_chunks, threads, [&](std::size_t k, unsigned) {
+        for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
+            const Aabb& b = boxes[i];
+            // The centre as Aabb::center() computes it.
+            const Vec3 c = centroids.empty() ? b.center() : centroids[i];
+            if (first_bad[k] == n && (!b.finite() || !finite(c) || b.empty())) first_bad[k] = i;
+            refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
+            parts[k].add(refs[i]);
+        }
+    }, 1);
+    for (std::size_t k = 0; k < n_chunks; ++k) {
+        const std::size_t i = first_bad[k];
+        if (i == n) continue;
+        const Vec3 c = centroids.empty() ? boxes[i].center() : centroids[i];
+        throw std::invalid_argument("BVH build: primitive " + std::to_string(i) +
+                                    (boxes[i].finite() && finite(c)
+                                         ? " has an inverted (empty) bounding box"
+                                         : " has a NaN or infinite bounding box"));
+    }
+    Bounds root;
+    for (const Bounds& p : parts) root.add(p);
+    return root;
+}
+
+// Builds the binary tree into s.nodes and returns the root's index and the
+// number of binary nodes: nodes
+// bigger than the task size are split one at a time with all threads, the
+// rest are subtree tasks spread over the threads, biggest first.
+std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root_bounds,
+                                                   unsigned threads) {
+    const auto n = static_cast<std::uint32_t>(s.prim_ids.size());
+    s.nodes.resize(2 * std::size_t{n});
+    const std::uint32_t task_size = threads > 1 ? std::max(kMinTask, n / (8 * threads)) : n;
+    std::vector<Task> stack, tasks;
+    const auto place = [&](Task t) {
+        if (t.end - t.begin <= task_size) {
+            t.node = 2 * t.begin;
+            tasks.push_back(t);
+        } else {
+            t.node = static_cast<std::uint32_t>(s.nodes.size());
+            s.nodes.emplace_back();
+            stack.push_back(t);
+        }
+        return t.node;
+    };
+    const std::uint32_t root = place({0, 0, n, 0, root_bounds});
+    Splitter top(s);
+    while (!stack.empty()) {
+        const Task t = stack.back();
+        stack.pop_back();
+        Task left, right;
+        if (!top.split(t, left, right, threads)) continue;
+        const std::uint32_t l = place(left), r = place(right);
+        s.nodes[t.node].left_or_first = l;
+        s.nodes[t.node].right_or_count = r;
+    }
+    std::stable_sort(tasks.begin(), tasks.end(),
+                     [](const Task& a, const Task& b) { return a.end - a.begin > b.end - b.begin; });
+    std::vector<std::unique_ptr<Splitter>> splitters(threads);
+    std::vector<std::uint32_t> sizes(tasks.size());
+    parallel_for(tasks.size(), threads, [&](std::size_t i, unsigned thread) {
+        if (!splitters[thread]) splitters[thread] = std::make_unique<Splitter>(s);
+        sizes[i] = splitters[thread]->build_subtree(tasks[i]);
+    }, 1);
+    std::size_t count = s.nodes.size() - 2 * std::size_t{n};
+    for (const std::uint32_t size : sizes) count += size;
+    return {root, count};
+}
 
 // Chooses up to `width` binary descendants of `node` to become its children in
 // the wide tree: open the inner child of largest area until the node is full.
 std::array<std::uint32_t, 8> collapse_children(const std::vector<BinaryNode>& nodes,
                                                std::uint32_t node, int width, int& n) {
-    std::array<std::uint32_t, 8> kids{nodes[node].left, nodes[node].right};
+    std::array<std::uint32_t, 8> kids{nodes[node].left_or_first, nodes[node].right_or_count};
     n = 2;
     while (n < width) {
         int pick = -1;
         float pick_area = -1.0f;
         for (int i = 0; i < n; ++i) {
             const BinaryNode& k = nodes[kids[i]];
-            if (!k.is_leaf() && k.box.surface_area() > pick_area) {
+            if (!k.is_leaf() && k.box().surface_area() > pick_area) {
                 pick = i;
-                pick_area = k.box.surface_area();
+                pick_area = k.box().surface_area();
             }
         }
         if (pick < 0) break;
         const BinaryNode& opened = nodes[kids[pick]];
         for (int i = n; i > pick + 1; --i) kids[i] = kids[i - 1];
-        kids[pick] = opened.left;
-        kids[pick + 1] = opened.right;
+        kids[pick] = opened.left_or_first;
+        kids[pick + 1] = opened.right_or_count;
         ++n;
     }
     return kids;
-}
-
-void validate(std::span<const Aabb> boxes, std::span<const Vec3> centroids) {
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-        const Vec3& c = centroids[i];
-        if (!boxes[i].finite() || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
-            throw std::invalid_argument("BVH build: primitive " + std::to_string(i) +
-                                        " has a NaN or infinite bounding box");
-        if (boxes[i].empty())
-            throw std::invalid_argument("BVH build: primitive " + std::to_string(i) +
-                                        " has an inverted (empty) bounding box");
-    }
 }
 
 }  // namespace
@@ -216,54 +469,58 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
                                     std::to_string(options.width));
     if (options.max_leaf_size < 1)
         throw std::invalid_argument("BVH build: max_leaf_size must be at least 1");
-    std::vector<Vec3> own_centroids;
-    if (centroids.empty()) {
-        own_centroids.reserve(boxes.size());
-        for (const Aabb& b : boxes) own_centroids.push_back(b.center());
-        centroids = own_centroids;
-    }
-    if (centroids.size() != boxes.size())
+    if (!centroids.empty() && centroids.size() != boxes.size())
         throw std::invalid_argument("BVH build: one centroid per box expected");
-    validate(boxes, centroids);
+    const unsigned threads =
+        options.threads > 0 ? static_cast<unsigned>(options.threads) : hardware_threads();
 
     Bvh bvh;
     bvh.width = options.width;
-    const std::vector<BinaryNode> nodes =
-        BinaryBuilder(boxes, centroids, options).build(bvh.prim_ids);
     bvh.root.count = BvhEntry::kInnerBit;  // empty root node
-    if (nodes.empty()) return bvh;
+    const std::size_t n = boxes.size();
+    bvh.prim_ids.resize(n);
+    Shared s{options, std::clamp(options.bins, 2, kMaxBins), {}, {}, bvh.prim_ids};
+    s.refs[0] = std::make_unique_for_overwrite<Ref[]>(n);
+    const Bounds root_bounds = load(s, boxes, centroids, threads);
+    if (n == 0) return bvh;
+    s.refs[1] = std::make_unique_for_overwrite<Ref[]>(n);
+    const auto [root, binary_nodes] = build_binary(s, root_bounds, threads);
+    s.refs = {};
+    const std::vector<BinaryNode>& nodes = s.nodes;
 
-    bvh.entries.reserve(nodes.size());
+    // As many slots as binary nodes, like the serial builder always reserved
+    // (memory_bytes() counts the capacity).
+    bvh.entries.reserve(binary_nodes);
     const auto fill = [&](std::uint32_t slot, std::uint32_t b) {
         BvhEntry& e = bvh.entries[slot];
-        e.box = nodes[b].box;
-        e.first = nodes[b].first;
-        e.count = nodes[b].count;
+        e.box = nodes[b].box();
+        e.first = nodes[b].is_leaf() ? nodes[b].left_or_first : 0;
+        e.count = nodes[b].is_leaf() ? nodes[b].right_or_count & ~BinaryNode::kLeafBit : 0;
     };
     // Work list of (binary inner node, entry slot that will point at its children;
     // UINT32_MAX for the root).
     struct Work { std::uint32_t binary, slot; };
     std::vector<Work> work;
-    bvh.root.box = nodes[0].box;
-    if (nodes[0].is_leaf()) {  // a lone leaf still hangs below a root node
+    bvh.root.box = nodes[root].box();
+    if (nodes[root].is_leaf()) {  // a lone leaf still hangs below a root node
         bvh.entries.resize(1);
-        fill(0, 0);
+        fill(0, root);
         bvh.root.first = 0;
         bvh.root.count = 1 | BvhEntry::kInnerBit;
         return bvh;
     }
-    work.push_back({0, UINT32_MAX});
+    work.push_back({root, UINT32_MAX});
     while (!work.empty()) {
         const Work w = work.back();
         work.pop_back();
-        int n = 0;
-        const auto kids = collapse_children(nodes, w.binary, options.width, n);
+        int k = 0;
+        const auto kids = collapse_children(nodes, w.binary, options.width, k);
         const auto first = static_cast<std::uint32_t>(bvh.entries.size());
-        bvh.entries.resize(first + n);
+        bvh.entries.resize(first + k);
         BvhEntry& parent = w.slot == UINT32_MAX ? bvh.root : bvh.entries[w.slot];
         parent.first = first;
-        parent.count = static_cast<std::uint32_t>(n) | BvhEntry::kInnerBit;
-        for (int i = n - 1; i >= 0; --i) {
+        parent.count = static_cast<std::uint32_t>(k) | BvhEntry::kInnerBit;
+        for (int i = k - 1; i >= 0; --i) {
             fill(first + i, kids[i]);
             if (!nodes[kids[i]].is_leaf()) work.push_back({kids[i], first + i});
         }
