@@ -4,6 +4,7 @@
 #include "intersectors/cylinder.h"
 #include "intersectors/link.h"
 #include "intersectors/phantom.h"
+#include "core/parallel.h"
 
 #include <stdexcept>
 
@@ -40,9 +41,8 @@ void add_mesh(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blase
 
 template <class Prim>
 MethodAccel build_ref(const std::vector<Prim>& prims, const Geometry& g, const MethodOptions& o) {
-    std::vector<Aabb> boxes;
-    boxes.reserve(prims.size());
-    for (const Prim& p : prims) boxes.push_back(bounds(p));
+    std::vector<Aabb> boxes(prims.size());
+    parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
     std::vector<Bvh> blases;
     blases.push_back(build_bvh(boxes, o.custom_blas));
     std::vector<BlasKind> kinds{BlasKind::Custom};
@@ -57,11 +57,11 @@ MethodAccel build_obb(const std::vector<Prim>& prims, const Geometry& g, const M
     std::vector<Bvh> blases;
     blases.push_back(build_bvh(std::vector<Aabb>{kUnitBox}, o.custom_blas));
     std::vector<BlasKind> kinds{BlasKind::Custom};
-    std::vector<Instance> instances;
-    instances.reserve(prims.size() + 1);
-    for (std::size_t i = 0; i < prims.size(); ++i)
-        instances.push_back(make_instance(0, static_cast<std::uint32_t>(i),
-                                          oriented_bounds(prims[i], o.obb).world_from_unit));
+    // One instance per primitive (each slot written by one task: deterministic).
+    std::vector<Instance> instances(prims.size());
+    parallel_for(prims.size(), o.tlas.threads, [&](std::size_t i, unsigned) {
+        instances[i] = make_instance(0, static_cast<std::uint32_t>(i), oriented_bounds(prims[i], o.obb).world_from_unit);
+    });
     add_mesh(g, o, blases, kinds, instances);
     return {Method::Obb, build_two_level(std::move(blases), std::move(instances), o.tlas),
             std::move(kinds)};

@@ -112,10 +112,13 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         }
         const std::string name(method_name(method));
         const auto t_build = std::chrono::steady_clock::now();
-        if (!ctx.quiet) std::fprintf(stderr, "build %s: %llu instances\n", name.c_str(),
+        if (!ctx.quiet) std::fprintf(stderr, "build %s: %llu instances...", name.c_str(),
                                      static_cast<unsigned long long>(m.instances));
-        const MethodAccel accel = build_method(method, geometry, c.build);
+        MethodOptions build = c.build;
+        build.custom_blas.threads = build.triangle_blas.threads = build.tlas.threads = ctx.threads;
+        const MethodAccel accel = build_method(method, geometry, build);
         m.build_seconds = seconds_since(t_build);
+        if (!ctx.quiet) std::fprintf(stderr, " done in %.2f s\n", m.build_seconds);
         m.structures = count_structures(accel);
         m.simulator_bytes = accel.accel.memory_bytes();
         FrameOptions fo;
