@@ -12,13 +12,29 @@
 // centred at axial zeta_c at axial zeta_c - k (r + k zeta_c). Each iteration
 // intersects the ray with that cone (a quadratic in s), finds which sphere
 // centre zeta_c the hit point belongs to and moves t by zeta_c / |B'(t)|
-// (when the ray misses the cone, t moves towards the ray's closest approach to
-// the axis instead). Converged when |zeta_c| <= 1e-6 r. Like Reshetov, two
-// searches start at t = 0 and t = 1; we add a third from the control-polygon
-// sample nearest the ray (curly curves) and the two end spheres, which make
-// the sweep closed and let consecutive segments join. The nearest candidate
-// not before tmin wins. Reshetov's early out tests the ray against a cylinder
-// around the chord P0-P3 bounding the curve (convex hull property).
+// (when the ray misses the cone, t moves down g(t) = x^2 + y^2 - r^2, which
+// is <= 0 exactly where sphere t meets the ray, the z axis). Converged when
+// |zeta_c| <= 1e-6 r; a secant step on zeta_c/|B'| replaces the plain step
+// once two iterates exist (rays running along the tube make the plain step
+// oscillate slowly).
+//
+// The iteration is local, so where it starts decides which crossing it finds.
+// Reshetov starts at t = 0 and t = 1; a ray crossing the tube twice or passing
+// near a tip can then settle on the farther crossing or none. Instead the
+// curve is cut into kPhantomBrackets sub-curves, each bounded by a capsule
+// around its chord grown by the chord's sag (h^2/8 max|B''| for the centre,
+// h^2/8 max(-r'') for the radius: B'' and r'' are linear, so their extremes
+// are at the sub-curve's ends). The capsule entry is a lower bound on any
+// crossing of that sub-curve, so sub-curves are searched nearest bound first,
+// each search confined to its parameter range and started at the chord point
+// nearest the capsule entry, and the rest are skipped once a hit is nearer
+// than their bound (within 1e-5 r). A search that finds nothing in a capsule
+// the ray enters is retried on the two halves (kPhantomSplits levels): the
+// ray may run along a curly sub-curve with several local minima of g. The
+// two end spheres close the sweep (the shape is the union of the spheres,
+// as the reference's link chain is) and let consecutive segments join.
+// Reshetov's early out tests the ray against a cylinder around the chord
+// P0-P3 bounding the curve (convex hull property).
 // Done in double for the same reason as span.h.
 #pragma once
 
@@ -67,6 +83,9 @@ struct PhantomOptions {
 
 namespace detail {
 
+inline constexpr int kPhantomBrackets = 4;  // sub-curves searched separately (see intersect)
+inline constexpr int kPhantomSplits = 3;    // halvings of a bracket whose search found nothing
+
 struct DBasis {
     DVec3 x, y;
 };
@@ -95,10 +114,14 @@ inline void sphere_candidate(const DVec3& m, double r, double u, double smin,
     best = {s, u, DVec3(0.0, 0.0, s) - m};
 }
 
-// One root search from parameter t; returns the number of iterations run.
+// One root search from parameter t, kept inside [t_lo, t_hi] (its bracket);
+// returns the number of iterations run.
 inline int phantom_search(const std::array<DVec3, 4>& q, const std::array<double, 4>& rr,
-                          double t, double smin, int max_iterations, PhantomCandidate& best) {
+                          double t, double t_lo, double t_hi, double smin, int max_iterations,
+                          PhantomCandidate& best) {
     int it = 0;
+    double t_prev = t, f_prev = 0.0;
+    bool have_prev = false;
     while (it < max_iterations) {
         ++it;
         const DVec3 c = bezier(q, t);
@@ -129,14 +152,29 @@ inline int phantom_search(const std::array<DVec3, 4>& q, const std::array<double
             if (!(s >= smin)) s = (-qb + sq) / qa;
             on_cone = s >= smin;
         }
-        if (!on_cone) {  // aim at the ray's closest approach to the tangent line
-            const double sin2 = a.x * a.x + a.y * a.y;
-            s = sin2 > 1e-12 ? cp.z / sin2 : c.z;
+        if (!on_cone) {
+            // Off the local cone: move towards the sphere that comes nearest to
+            // being hit, i.e. down g(t) = x^2 + y^2 - r^2 (the ray is the z
+            // axis, so sphere t is hit iff g(t) <= 0). Newton on g' where g is
+            // convex, else a fixed downhill step: aiming at the ray's closest
+            // approach instead can settle on a local maximum of the distance
+            // or ignore the radius.
+            const DVec3 ddc = bezier_second_derivative(q, t);
+            const double dr = bezier_derivative(rr, t), ddr = bezier_second_derivative(rr, t);
+            const double g1 = c.x * dc.x + c.y * dc.y - r * dr;
+            const double g2 = dc.x * dc.x + dc.y * dc.y + c.x * ddc.x + c.y * ddc.y - dr * dr - r * ddr;
+            const double step = 0.25 * (t_hi - t_lo);
+            const double dt = g2 > 0.0 ? std::clamp(-g1 / g2, -step, step) : (g1 > 0.0 ? -step : step);
+            if (std::abs(dt) * dcl <= 1e-6 * r) return it;  // nearest sphere still missed
+            const double t_new = std::clamp(t + dt, t_lo, t_hi);
+            if (t_new == t) return it;
+            t = t_new, have_prev = false;
+            continue;
         }
         const double zeta = s * a.z - ca;
-        const double zeta_c = on_cone ? (zeta + k * r) / (1.0 - k * k) : zeta;
+        const double zeta_c = (zeta + k * r) / (1.0 - k * k);
         const double t_raw = t + zeta_c / dcl;
-        if (on_cone && std::abs(zeta_c) <= 1e-6 * r) {
+        if (std::abs(zeta_c) <= 1e-6 * r) {
             if (t_raw >= 0.0 && t_raw <= 1.0 && s < best.s) {
                 const DVec3 radial = DVec3(0.0, 0.0, s) - c - zeta * a;
                 const double rl = glm::length(radial);
@@ -145,11 +183,61 @@ inline int phantom_search(const std::array<DVec3, 4>& q, const std::array<double
             }
             return it;
         }
-        const double t_new = std::clamp(t_raw, 0.0, 1.0);
-        if (t_new == t) return it;  // pushed off an end: the end sphere decides there
+        // The plain step t + zeta_c/|B'| oscillates slowly when the ray runs
+        // nearly along the tube (contraction ~ -0.7 seen): a secant step on
+        // the step itself, f(t) = zeta_c/|B'|, converges superlinearly there
+        // and is exact where f is linear.
+        const double f = zeta_c / dcl;
+        double t_next = t_raw;
+        if (have_prev && f != f_prev) {
+            const double sec = t - f * (t - t_prev) / (f - f_prev);
+            if (std::isfinite(sec)) t_next = sec;
+        }
+        t_prev = t, f_prev = f, have_prev = true;
+        const double t_new = std::clamp(t_next, t_lo, t_hi);
+        if (t_new == t) return it;  // pushed off the bracket: its neighbour (or end sphere) decides
         t = t_new;
     }
     return it;
+}
+
+// Interval [lo, hi] of the z axis (the ray in the ray-centric frame) inside the
+// capsule of radius R around segment a-b; false when the axis misses it. Exact
+// for the convex capsule: the hull of its end spheres and its body (infinite
+// cylinder within the slab between the end planes).
+inline bool capsule_z(const DVec3& a, const DVec3& b, double R, double& lo, double& hi) {
+    lo = kDInf, hi = -kDInf;
+    for (const DVec3& m : {a, b}) {
+        const double h = R * R - (m.x * m.x + m.y * m.y);
+        if (h >= 0.0) {
+            const double half = std::sqrt(h);
+            lo = std::min(lo, m.z - half), hi = std::max(hi, m.z + half);
+        }
+    }
+    const DVec3 w = b - a;
+    const double len = glm::length(w);
+    const double sin2 = (w.x * w.x + w.y * w.y) / (len * len);
+    if (len > 0.0 && sin2 > 1e-14) {  // (a ray along the axis meets the body only between the spheres)
+        const DVec3 wn = w / len;
+        const DVec3 m = -a;                             // ray point at s = 0, from a
+        const double y0 = glm::dot(m, wn);              // its axial coordinate
+        const DVec3 mp = m - y0 * wn;                   // its offset from the axis
+        const DVec3 ep = DVec3(0.0, 0.0, 1.0) - wn.z * wn;  // offset per unit s
+        const double qb = glm::dot(mp, ep), qc = glm::dot(mp, mp) - R * R;
+        const double h = qb * qb - sin2 * qc;
+        if (h >= 0.0) {
+            const double sq = std::sqrt(h);
+            double b0 = (-qb - sq) / sin2, b1 = (-qb + sq) / sin2;
+            if (wn.z != 0.0) {
+                const double z0 = -y0 / wn.z, z1 = (len - y0) / wn.z;
+                b0 = std::max(b0, std::min(z0, z1)), b1 = std::min(b1, std::max(z0, z1));
+            } else if (y0 < 0.0 || y0 > len) {
+                b0 = kDInf, b1 = -kDInf;
+            }
+            if (b0 <= b1) lo = std::min(lo, b0), hi = std::max(hi, b1);
+        }
+    }
+    return lo <= hi;
 }
 
 }  // namespace detail
@@ -202,20 +290,73 @@ template <class Sink>
         }
     }
 
+    // Brackets: the curve cut into kPhantomBrackets sub-curves, each inside a
+    // capsule around its chord grown by the chord's sag. The capsule entry is
+    // a lower bound on any crossing of that sub-curve's sweep, so the
+    // brackets are searched nearest first and the rest are skipped once a hit
+    // is nearer than their bound (within 1e-5 r): the result is the nearest
+    // crossing, not whichever one a search from the ends happens to reach.
     detail::PhantomCandidate best;
     detail::sphere_candidate(q[0], rr[0], 0.0, smin, best);
     detail::sphere_candidate(q[3], rr[3], 1.0, smin, best);
-    int iterations = detail::phantom_search(q, rr, 0.0, smin, opt.max_iterations, best);
-    iterations += detail::phantom_search(q, rr, 1.0, smin, opt.max_iterations, best);
-    // Third start: the control-polygon sample nearest the ray (curly curves
-    // can hold a hit far from both ends that neither end search reaches).
-    double t_near = 0.5, d_near = kDInf;
-    for (int i = 1; i < 8; ++i) {
-        const DVec3 p = bezier(q, i / 8.0);
-        const double dist2 = p.x * p.x + p.y * p.y;
-        if (dist2 < d_near) d_near = dist2, t_near = i / 8.0;
+    // B'' and r'' are linear in t, so their extremes on a bracket are at its ends.
+    const DVec3 d0 = q[2] - 2.0 * q[1] + q[0], d1 = q[3] - 2.0 * q[2] + q[1];
+    const double e0 = rr[2] - 2.0 * rr[1] + rr[0], e1 = rr[3] - 2.0 * rr[2] + rr[1];
+    double scale = rmax;
+    for (const DVec3& p : q) scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    const double pad = 1e-12 * scale;  // rounding of the frame and the Bezier sums
+    struct Bracket {
+        double lo, t0, t1, t_start;
+        int depth;
+    };
+    // At most kN roots plus two halves per failed search (each split removes one).
+    constexpr int kN = detail::kPhantomBrackets, kDepth = detail::kPhantomSplits;
+    std::array<Bracket, kN + 2 * kN * kDepth> br;
+    int nb = 0;
+    // Capsule test of sub-curve [t0, t1]; pushes it when the ray may meet it.
+    auto push = [&](double t0, double t1, int depth) {
+        const DVec3 pa = bezier(q, t0), pb = bezier(q, t1);
+        const double ra = std::max(bezier(rr, t0), 0.0), rb = std::max(bezier(rr, t1), 0.0);
+        const double sc = 6.0 * std::max(glm::length((1.0 - t0) * d0 + t0 * d1),
+                                         glm::length((1.0 - t1) * d0 + t1 * d1));
+        const double sr = 6.0 * std::max({-((1.0 - t0) * e0 + t0 * e1), -((1.0 - t1) * e0 + t1 * e1), 0.0});
+        // |B - chord| <= h^2/8 max|B''|, r - chord(r) <= h^2/8 max(-r'').
+        const double h = t1 - t0;
+        const double grow = h * h / 8.0 * (sc + sr);
+        double lo, hi;
+        if (!detail::capsule_z(pa, pb, std::max(ra, rb) * (1.0 + 1e-9) + grow + pad, lo, hi) ||
+            !(hi >= smin))
+            return;
+        // Start at the chord point nearest the capsule entry (on the ray).
+        const DVec3 w = pb - pa;
+        const double w2 = glm::dot(w, w);
+        const double u = w2 > 0.0
+            ? std::clamp(glm::dot(DVec3(0.0, 0.0, std::max(lo, smin)) - pa, w) / w2, 0.0, 1.0)
+            : 0.5;
+        br[nb++] = {lo, t0, t1, t0 + u * h, depth};
+    };
+    for (int i = 0; i < kN; ++i) push(double(i) / kN, double(i + 1) / kN, 0);
+    const double eps = 1e-5 * rmax;
+    int iterations = 0;
+    while (nb > 0) {
+        int m = 0;  // nearest bound first (first of equals: deterministic)
+        for (int i = 1; i < nb; ++i)
+            if (br[i].lo < br[m].lo) m = i;
+        const Bracket b = br[m];
+        br[m] = br[--nb];
+        if (!(b.lo < best.s - eps)) break;
+        const double before = best.s;
+        iterations += detail::phantom_search(q, rr, b.t_start, b.t0, b.t1, smin,
+                                             opt.max_iterations, best);
+        // A search that found nothing nearer in a bracket the ray enters may
+        // have settled in the wrong one of several local minima (a ray
+        // running along a curly curve): halve the bracket and try again.
+        if (best.s == before && b.depth < kDepth) {
+            const double tm = 0.5 * (b.t0 + b.t1);
+            push(b.t0, tm, b.depth + 1);
+            push(tm, b.t1, b.depth + 1);
+        }
     }
-    iterations += detail::phantom_search(q, rr, t_near, smin, opt.max_iterations, best);
     sink.add(Event::PhantomIteration, static_cast<std::uint32_t>(iterations));
 
     if (!(best.s < kDInf)) return std::nullopt;
