@@ -29,6 +29,7 @@ enum class Event : std::uint8_t {
     PhantomIteration,    // one iteration of the phantom root finder
     PhantomEarlyOut,     // the phantom bounding-cylinder early-out test ran
     PhantomEarlyReject,  // ... and rejected the ray before iterating
+    PhantomBracketTest,  // one ray/capsule test bounding a sub-curve (root bracketing)
     ReportedHit,         // an intersection program reported a hit
     Count
 };
@@ -40,7 +41,7 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "blas_node_visit", "blas_box_test",   "triangle_test",        "context_switch",
     "is_call",       "is_cylinder",       "is_capsule",           "is_link",
     "is_phantom",    "phantom_iteration", "phantom_early_out",    "phantom_early_reject",
-    "reported_hit",
+    "phantom_bracket_test", "reported_hit",
 };
 
 [[nodiscard]] constexpr std::string_view event_name(Event e) {

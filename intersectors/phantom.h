@@ -313,8 +313,10 @@ template <class Sink>
     constexpr int kN = detail::kPhantomBrackets, kDepth = detail::kPhantomSplits;
     std::array<Bracket, kN + 2 * kN * kDepth> br;
     int nb = 0;
+    std::uint32_t bracket_tests = 0;
     // Capsule test of sub-curve [t0, t1]; pushes it when the ray may meet it.
     auto push = [&](double t0, double t1, int depth) {
+        ++bracket_tests;
         const DVec3 pa = bezier(q, t0), pb = bezier(q, t1);
         const double ra = std::max(bezier(rr, t0), 0.0), rb = std::max(bezier(rr, t1), 0.0);
         const double sc = 6.0 * std::max(glm::length((1.0 - t0) * d0 + t0 * d1),
@@ -358,6 +360,7 @@ template <class Sink>
         }
     }
     sink.add(Event::PhantomIteration, static_cast<std::uint32_t>(iterations));
+    sink.add(Event::PhantomBracketTest, bracket_tests);
 
     if (!(best.s < kDInf)) return std::nullopt;
     const float t = static_cast<float>(best.s / dlen);
