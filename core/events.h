@@ -44,6 +44,8 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "phantom_bracket_test", "reported_hit",
 };
 
+static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
+
 [[nodiscard]] constexpr std::string_view event_name(Event e) {
     return kEventNames[static_cast<std::size_t>(e)];
 }
