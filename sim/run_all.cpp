@@ -25,6 +25,8 @@ std::string sanitize(const std::string& label) {
         else if (!s.empty() && s.back() != '_')
             s += '_';
     }
+    // Directory names stay well under file-system limits (255 bytes).
+    if (s.size() > 96) s.resize(96);
     return s.empty() ? "run" : s;
 }
 

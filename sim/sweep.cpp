@@ -64,19 +64,29 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
     std::vector<std::size_t> index(axes.size(), 0);
     for (;;) {
         SweepPoint p{base, nlohmann::json::object(), ""};
+        const auto add_label = [&](const std::string& k, const nlohmann::json& v) {
+            p.label += (p.label.empty() ? "" : " ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
+        };
         for (std::size_t a = 0; a < axes.size(); ++a) {
+            const std::string& axis = axes[a].first;
             const nlohmann::json& v = axes[a].second[index[a]];
-            set_by_path(p.config, axes[a].first, v, /*merge=*/true);
-            if (v.is_object()) {  // a paired axis: record each member separately
-                for (const auto& [k, x] : v.items()) p.values[axes[a].first + "." + k] = x;
-            } else {
-                p.values[axes[a].first] = v;
+            set_by_path(p.config, axis, v, /*merge=*/true);
+            if (!v.is_object()) {
+                p.values[axis] = v;
+                add_label(axis, v);
+                continue;
             }
+            // A paired axis: record each member; label it by its "name" if it
+            // has one (a whole scene block would swamp the label), else by its
+            // scalar members.
+            for (const auto& [k, x] : v.items()) p.values[axis + "." + k] = x;
+            if (v.contains("name") && v["name"].is_string()) {
+                add_label(axis, v["name"]);
+                continue;
+            }
+            for (const auto& [k, x] : v.items())
+                if (x.is_primitive()) add_label(axis + "." + k, x);
         }
-        // Labels show scalar values only (a nested scene block would swamp them).
-        for (const auto& [k, v] : p.values.items())
-            if (v.is_primitive())
-                p.label += (p.label.empty() ? "" : " ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
         points.push_back(std::move(p));
         std::size_t a = axes.size();
         while (a > 0) {
