@@ -17,11 +17,16 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+
+#ifdef __SSE__
+#include <immintrin.h>
+#endif
 
 namespace rtc {
 namespace {
@@ -37,8 +42,15 @@ struct Box4 {
     V4 lo = {kInfinity, kInfinity, kInfinity, kInfinity};
     V4 hi = -lo;
     void extend(V4 blo, V4 bhi) {
+#ifdef __SSE__
+        // minps(a, b) is a < b ? a : b and maxps(a, b) is a > b ? a : b, the
+        // same selections; GCC does not see that and emits compare-and-blend.
+        lo = _mm_min_ps(blo, lo);
+        hi = _mm_max_ps(bhi, hi);
+#else
         lo = blo < lo ? blo : lo;
         hi = hi < bhi ? bhi : hi;
+#endif
     }
     [[nodiscard]] Aabb aabb() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
@@ -81,6 +93,8 @@ constexpr int kMaxBins = 64;
 constexpr std::uint32_t kChunk = 16384;
 // Subtrees at most this big (or n / (8 threads)) are built as one serial task.
 constexpr std::uint32_t kMinTask = 4096;
+// Nodes at most this big bin only into the bins they occupy.
+constexpr std::uint32_t kSmall = 32;
 
 struct Bounds {
     Aabb box, cbox;  // of the primitives' boxes, of their centroids
@@ -114,6 +128,15 @@ struct BinMap {
     [[nodiscard]] int of(const Vec3& c, int axis) const {
         return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
     }
+    // All three axes at once, lane-wise exactly as of() computes them; an axis
+    // without spread puts everything into bin 0.
+    [[nodiscard]] I4 of(const Ref& r) const {
+        const V4 lo4{lo.x, lo.y, lo.z, 0.0f}, scale4{scale.x, scale.y, scale.z, 0.0f};
+        const I4 zero{}, last = zero + (bins - 1);
+        I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo4) * scale4, I4);
+        b = b < zero ? zero : b;
+        return b > last ? last : b;
+    }
 };
 
 struct Bins {
@@ -124,24 +147,17 @@ struct Bins {
         for (int axis = 0; axis < 3; ++axis)
             for (int b = 0; b < bins; ++b) box[axis][b] = {}, count[axis][b] = 0;
     }
-    // All three axes at once, branch-free: an axis without spread bins
-    // everything into bin 0 and is never priced. The bin index is computed
-    // lane-wise exactly as BinMap::of does it.
-    void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
-        const V4 lo{map.lo.x, map.lo.y, map.lo.z, 0.0f};
-        const V4 scale{map.scale.x, map.scale.y, map.scale.z, 0.0f};
-        const I4 zero{}, last = zero + (map.bins - 1);
-        for (std::uint32_t i = begin; i < end; ++i) {
-            const Ref& r = refs[i];
-            const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
-            I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo) * scale, I4);
-            b = b < zero ? zero : b;
-            b = b > last ? last : b;
-            for (int axis = 0; axis < 3; ++axis) {
-                box[axis][b[axis]].extend(rlo, rhi);
-                ++count[axis][b[axis]];
-            }
+    // All three axes at once, branch-free (an axis without spread is never
+    // priced).
+    void add(const Ref& r, I4 b) {
+        const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
+        for (int axis = 0; axis < 3; ++axis) {
+            box[axis][b[axis]].extend(rlo, rhi);
+            ++count[axis][b[axis]];
         }
+    }
+    void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
+        for (std::uint32_t i = begin; i < end; ++i) add(refs[i], map.of(refs[i]));
     }
     void add(const Bins& o, int bins) {  // o's primitives come after ours
         for (int axis = 0; axis < 3; ++axis)
@@ -157,38 +173,60 @@ struct Split {
     float cost = kInfinity;
 };
 
+// Aabb::surface_area() of a non-empty box, with the same operations in the
+// same order; lane 3 of lo (a primitive id) is masked so no denormal meets
+// the arithmetic.
+float area(const Box4& b) {
+    const V4 lo = reinterpret_cast<V4>(reinterpret_cast<I4>(b.lo) & I4{-1, -1, -1, 0});
+    const V4 e = b.hi - lo;
+    const V4 p = e * __builtin_shufflevector(e, e, 1, 2, 0, 3);  // xy, yz, zx
+    return 2.0f * (p[0] + p[1] + p[2]);
+}
+
+// The occupied bins of each axis, in order.
+struct Occupied {
+    std::array<std::array<int, kMaxBins>, 3> bin;
+    std::array<int, 3> count{};
+    Occupied() = default;
+    Occupied(const Bins& bins, const BinMap& map) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < map.bins; ++b)
+                if (bins.count[axis][b] > 0) bin[axis][count[axis]++] = b;
+    }
+};
+
 // The binned SAH sweep: for every axis and plane, the cost of splitting there.
 // Only planes just after an occupied bin are priced: a plane after an empty
 // bin splits the same primitives as the one before it, so it has bit for bit
 // the same cost and would lose the tie anyway. This keeps small nodes cheap.
-Split find_sah_split(const Bins& bins, const BinMap& map, float area, const BuildOptions& o) {
-    const float inv_area = area > 0.0f ? 1.0f / area : 0.0f;
+Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, float area_of_node,
+                     const BuildOptions& o) {
+    const float inv_area = area_of_node > 0.0f ? 1.0f / area_of_node : 0.0f;
     Split best;
     for (int axis = 0; axis < 3; ++axis) {
         if (!map.active[axis]) continue;
-        std::array<int, kMaxBins> used;  // occupied bins, in order
-        int m = 0;
-        for (int b = 0; b < map.bins; ++b)
-            if (bins.count[axis][b] > 0) used[m++] = b;
+        const auto& box = bins.box[axis];
+        const auto& count = bins.count[axis];
+        const auto& u = used.bin[axis];
+        const int m = used.count[axis];
         // Right-to-left sweep stores the cost of each right part.
         std::array<float, kMaxBins> right_cost;
-        Aabb acc;
+        Box4 acc;
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
-            acc.extend(bins.box[axis][used[j]].aabb());
-            n += bins.count[axis][used[j]];
-            right_cost[j] = acc.surface_area() * static_cast<float>(n);
+            acc.extend(box[u[j]].lo, box[u[j]].hi);
+            n += count[u[j]];
+            right_cost[j] = area(acc) * static_cast<float>(n);
         }
         acc = {};
         n = 0;
-        for (int j = 1; j < m; ++j) {  // plane after bin used[j - 1]
-            acc.extend(bins.box[axis][used[j - 1]].aabb());
-            n += bins.count[axis][used[j - 1]];
+        for (int j = 1; j < m; ++j) {  // plane after bin u[j - 1]
+            acc.extend(box[u[j - 1]].lo, box[u[j - 1]].hi);
+            n += count[u[j - 1]];
             const float cost =
                 o.traversal_cost +
-                o.intersection_cost * (acc.surface_area() * static_cast<float>(n) + right_cost[j]) *
-                    inv_area;
-            if (cost < best.cost) best = {axis, used[j - 1] + 1, cost};  // strict: ties keep the first
+                o.intersection_cost * (area(acc) * static_cast<float>(n) + right_cost[j]) * inv_area;
+            if (cost < best.cost) best = {axis, u[j - 1] + 1, cost};  // strict: ties keep the first
         }
     }
     return best;
@@ -232,14 +270,30 @@ public:
 
         const bool fits_leaf = count <= static_cast<std::uint32_t>(o.max_leaf_size);
         const BinMap map(t.bounds.cbox, s_.bins);
+        const bool small = count <= kSmall;
         Split best;
-        if (o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth)
-            best = find_sah_split(bin(src, t, map, threads), map, t.bounds.box.surface_area(), o);
+        if (o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth) {
+            const float area = t.bounds.box.surface_area();
+            if (small) {
+                best = find_sah_split(bin_small(src, t, map), small_used_, map, area, o);
+            } else {
+                const Bins& bins = bin(src, t, map, threads);
+                best = find_sah_split(bins, Occupied(bins, map), map, area, o);
+            }
+        }
         const float leaf_cost = o.intersection_cost * static_cast<float>(count);
         if (fits_leaf && (best.axis < 0 || leaf_cost <= best.cost)) return make_leaf();
-        const std::uint32_t mid = best.axis >= 0
-                                      ? partition(src, dst, t, map, best, left.bounds, right.bounds, threads)
-                                      : median_split(src, dst, t, left.bounds, right.bounds);
+        std::uint32_t mid;
+        if (best.axis < 0) {
+            mid = median_split(src, dst, t, left.bounds, right.bounds);
+        } else if (small) {
+            const auto goes_left = [&](std::uint32_t i) { return small_bin_[i - t.begin][best.axis] < best.bin; };
+            std::uint32_t n_left = 0;
+            for (std::uint32_t i = t.begin; i < t.end; ++i) n_left += goes_left(i);
+            mid = partition_serial(src, dst, t, n_left, goes_left, left.bounds, right.bounds);
+        } else {
+            mid = partition(src, dst, t, map, best, left.bounds, right.bounds, threads);
+        }
         left = {0, t.begin, mid, t.depth + 1, left.bounds};
         right = {0, mid, t.end, t.depth + 1, right.bounds};
         return true;
@@ -289,26 +343,59 @@ private:
         return chunk_bins_[0];  // chunks beyond the first keep their own counts
     }
 
+    // Small nodes: the same bins, prices and ties, but only the occupied bins
+    // are reset and filled (resetting all 3 x 16 bins costs more than binning
+    // a few primitives), and each primitive's bins are kept for the partition.
+    const Bins& bin_small(const Ref* src, const Task& t, const BinMap& map) {
+        std::array<std::uint64_t, 3> mask{};
+        for (std::uint32_t i = t.begin; i < t.end; ++i) {
+            const I4 b = small_bin_[i - t.begin] = map.of(src[i]);
+            for (int axis = 0; axis < 3; ++axis) mask[axis] |= std::uint64_t{1} << b[axis];
+        }
+        small_used_.count = {};
+        for (int axis = 0; axis < 3; ++axis) {
+            for (std::uint64_t m = mask[axis]; m != 0; m &= m - 1) {
+                const int b = std::countr_zero(m);
+                small_used_.bin[axis][small_used_.count[axis]++] = b;
+                small_bins_.box[axis][b] = {};
+                small_bins_.count[axis][b] = 0;
+            }
+        }
+        for (std::uint32_t i = t.begin; i < t.end; ++i) small_bins_.add(src[i], small_bin_[i - t.begin]);
+        return small_bins_;
+    }
+
+    // Stable partition of the range into dst: the n_left references for which
+    // goes_left(i) holds first, in order, then the rest; also their bounds.
+    template <class GoesLeft>
+    static std::uint32_t partition_serial(const Ref* src, Ref* dst, const Task& t, std::uint32_t n_left,
+                                          GoesLeft goes_left, Bounds& left, Bounds& right) {
+        std::uint32_t l = t.begin, r = t.begin + n_left;
+        std::array<Box4, 2> box, cbox;  // left, right
+        for (std::uint32_t i = t.begin; i < t.end; ++i) {
+            const Ref& ref = src[i];
+            const bool to_left = goes_left(i);
+            dst[to_left ? l++ : r++] = ref;
+            box[!to_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
+            const V4 c = ref.lanes(ref.centroid);
+            cbox[!to_left].extend(c, c);
+        }
+        left = {box[0].aabb(), cbox[0].aabb()};
+        right = {box[1].aabb(), cbox[1].aabb()};
+        return l;
+    }
+
     // Stable partition by bin into dst; each chunk's left part starts after the
     // left parts of the chunks before it, known from the chunk's bin counts.
     std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
                             const Split& best, Bounds& left, Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
         if (n == 1) {
-            std::uint32_t l = t.begin, r = t.begin;
-            for (int b = 0; b < best.bin; ++b) r += chunk_bins_[0].count[best.axis][b];
-            std::array<Box4, 2> box, cbox;  // left, right
-            for (std::uint32_t i = t.begin; i < t.end; ++i) {
-                const Ref& ref = src[i];
-                const bool goes_left = map.of(ref.centroid, best.axis) < best.bin;
-                dst[goes_left ? l++ : r++] = ref;
-                box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
-                const V4 c = ref.lanes(ref.centroid);
-                cbox[!goes_left].extend(c, c);
-            }
-            left = {box[0].aabb(), cbox[0].aabb()};
-            right = {box[1].aabb(), cbox[1].aabb()};
-            return l;
+            std::uint32_t n_left = 0;
+            for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
+            return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
+                return map.of(src[i].centroid, best.axis) < best.bin;
+            }, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
         std::vector<std::uint32_t> left_at(n + 1, 0);
@@ -352,6 +439,9 @@ private:
 
     Shared& s_;
     std::vector<Bins> chunk_bins_;
+    Bins small_bins_;  // only the occupied bins are ever reset
+    Occupied small_used_;
+    std::array<I4, kSmall> small_bin_;  // each reference's bins, for the partition
 };
 
 bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
