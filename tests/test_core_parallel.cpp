@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -127,5 +128,32 @@ TEST_CASE("bvh build: the first invalid primitive is named whatever the thread c
         o.threads = threads;
         CHECK_THROWS_WITH_AS(build_bvh(boxes, o), doctest::Contains("primitive 40000 has an inverted"),
                              std::invalid_argument);
+    }
+}
+
+// Nodes of up to 32 references bin only into their occupied bins; clusters of
+// a few boxes whose centroids differ by less than a float's smallest normal
+// (where a bin scale overflows to infinity) or not at all exercise that path,
+// its ties and its fall-back to the object median, below parallel top splits.
+TEST_CASE("bvh build: the same tree for 1, 2 and 4 threads, clusters of tiny nodes") {
+    Rng rng(17);
+    std::vector<Aabb> boxes;
+    const float tiny = std::numeric_limits<float>::denorm_min();
+    while (boxes.size() < 40000) {
+        const Vec3 c = rng.point(0.0f, 1.0f);
+        const int size = 1 + static_cast<int>(rng.gen() % 40);
+        const int kind = static_cast<int>(rng.gen() % 3);
+        for (int i = 0; i < size; ++i) {
+            Vec3 p = c;
+            if (kind == 0) p.x = static_cast<float>(rng.gen() % 4) * tiny;  // denormal spreads
+            if (kind == 1) p += rng.point(0.0f, 1e-3f);                     // ordinary small cluster
+            boxes.push_back({p - Vec3(static_cast<float>(i % 3) * 1e-4f), p + Vec3(1e-4f)});
+        }
+    }
+    for (int leaf : {1, 2}) {
+        BuildOptions o;
+        o.max_leaf_size = leaf;
+        CAPTURE(leaf);
+        check_thread_independent(boxes, o);
     }
 }

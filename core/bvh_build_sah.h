@@ -1,0 +1,93 @@
+// Internal to the BVH builder: binned SAH (Wald 2007, "On fast construction
+// of SAH-based bounding volume hierarchies"). Centroids are binned along each
+// axis of the node's centroid box, and the sweep prices the planes between
+// bins by the surface area heuristic.
+#pragma once
+
+#include "core/bvh.h"
+#include "core/bvh_build_refs.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+namespace rtc::bvh_detail {
+
+constexpr int kMaxBins = 64;
+
+// Maps a centroid to its bin along one axis of the node's centroid box.
+struct BinMap {
+    int bins;
+    Vec3 lo, scale;
+    std::array<bool, 3> active;  // axes along which the centroids spread
+    BinMap(const Aabb& cbox, int n_bins) : bins(n_bins), lo(cbox.lo) {
+        for (int axis = 0; axis < 3; ++axis) {
+            active[axis] = cbox.hi[axis] > cbox.lo[axis];
+            scale[axis] = static_cast<float>(bins) / (cbox.hi[axis] - cbox.lo[axis]);
+        }
+    }
+    [[nodiscard]] int of(const Vec3& c, int axis) const {
+        return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
+    }
+    // All three axes at once, lane-wise exactly as of() computes them; an axis
+    // without spread puts everything into bin 0.
+    [[nodiscard]] I4 of(const Ref& r) const {
+        const V4 lo4{lo.x, lo.y, lo.z, 0.0f}, scale4{scale.x, scale.y, scale.z, 0.0f};
+        const I4 zero{}, last = zero + (bins - 1);
+        I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo4) * scale4, I4);
+        b = b < zero ? zero : b;
+        return b > last ? last : b;
+    }
+};
+
+struct Bins {
+    std::array<std::array<Box4, kMaxBins>, 3> box;
+    std::array<std::array<std::uint32_t, kMaxBins>, 3> count;
+
+    void reset(int bins) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bins; ++b) box[axis][b] = {}, count[axis][b] = 0;
+    }
+    // All three axes at once, branch-free (an axis without spread is never
+    // priced).
+    void add(const Ref& r, I4 b) {
+        const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
+        for (int axis = 0; axis < 3; ++axis) {
+            box[axis][b[axis]].extend(rlo, rhi);
+            ++count[axis][b[axis]];
+        }
+    }
+    void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
+        for (std::uint32_t i = begin; i < end; ++i) add(refs[i], map.of(refs[i]));
+    }
+    void add(const Bins& o, int bins) {  // o's primitives come after ours
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bins; ++b)
+                box[axis][b].extend(o.box[axis][b].lo, o.box[axis][b].hi),
+                    count[axis][b] += o.count[axis][b];
+    }
+};
+
+struct Split {
+    int axis = -1;
+    int bin = 0;  // primitives in bins [0, bin) go left
+    float cost = kInfinity;
+};
+// The occupied bins of each axis, in order.
+struct Occupied {
+    std::array<std::array<int, kMaxBins>, 3> bin;
+    std::array<int, 3> count{};
+    Occupied() = default;
+    Occupied(const Bins& bins, const BinMap& map) {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < map.bins; ++b)
+                if (bins.count[axis][b] > 0) bin[axis][count[axis]++] = b;
+    }
+};
+
+// The best split over all axes (axis -1 when no plane separates anything):
+// lowest cost, ties to the smallest axis and bin.
+[[nodiscard]] Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map,
+                                   float area_of_node, const BuildOptions& o);
+
+}  // namespace rtc::bvh_detail
