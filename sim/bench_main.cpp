@@ -34,6 +34,7 @@ constexpr const char* kHelp =
     "  --repeat K     best of K traces per figure (default 3)\n"
     "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
     "  --json FILE    also write the figures as JSON\n"
+    "  --methods LIST only these methods (ref, obb) where a case has them\n"
     "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
     "  --help         this text\n";
 
@@ -44,6 +45,7 @@ struct Cli {
     std::string data = "../shared/data";
     std::string json_file;
     int pixels = 0;  // 0: each case's own resolution
+    std::set<std::string> methods{"ref", "obb"};
 };
 
 Cli parse(int argc, char** argv) {
@@ -83,6 +85,14 @@ Cli parse(int argc, char** argv) {
             cli.bench.repeat = number(1);
         } else if (a == "--data") {
             cli.data = value();
+        } else if (a == "--methods") {
+            cli.methods.clear();
+            std::stringstream list(value());
+            for (std::string item; std::getline(list, item, ',');) {
+                if (item != "ref" && item != "obb")
+                    throw InputError("bench: --methods: unknown method \"" + item + "\"");
+                cli.methods.insert(item);
+            }
         } else if (a == "--pixels") {
             cli.pixels = number(1);
         } else if (a == "--json") {
@@ -152,9 +162,14 @@ int main(int argc, char** argv) {
                     threads, cli.bench.repeat);
         nlohmann::json out = {{"threads", threads}, {"repeat", cli.bench.repeat}};
         for (BenchCase& c : cases) {
-            if (cli.pixels > 0)
-                for (BenchRun& run : c.runs)
+            for (BenchRun& run : c.runs) {
+                if (cli.pixels > 0)
                     run.config["workload"]["width"] = run.config["workload"]["height"] = cli.pixels;
+                nlohmann::json kept = nlohmann::json::array();
+                for (const auto& m : run.config["methods"])
+                    if (cli.methods.count(m.get<std::string>())) kept.push_back(m);
+                run.config["methods"] = kept;
+            }
             std::printf("case %d: %s%s%s\n", c.id, c.title.c_str(), c.note.empty() ? "" : "\n  (",
                         c.note.empty() ? "" : (c.note + ")").c_str());
             nlohmann::json jc = {{"id", c.id}, {"title", c.title}, {"note", c.note}};
@@ -164,6 +179,7 @@ int main(int argc, char** argv) {
             }
             std::fflush(stdout);  // before the builds' progress lines on stderr
             for (const BenchRun& run : c.runs) {
+                if (run.config["methods"].empty()) continue;  // filtered out by --methods
                 const RunFigures r = run_bench(run, cli.bench);
                 print_run(r);
                 jc["runs"].push_back(to_json(r));
