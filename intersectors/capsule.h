@@ -62,7 +62,20 @@ template <class Sink>
         const DVec3 d(ray.direction), oc = DVec3(ray.origin) - c;
         const double dd = glm::dot(d, d), od = glm::dot(oc, d);
         const double reach2 = 2.0 * (0.25 * len2 + r * r);
-        if (!(dd > 0.0) || !(glm::dot(oc, oc) * dd - od * od <= reach2 * dd)) return std::nullopt;
+        const double oo = glm::dot(oc, oc);
+        if (!(dd > 0.0) || !(oo * dd - od * od <= reach2 * dd)) return std::nullopt;
+        // Long thin capsules pass the sphere test above for most rays: reject
+        // too when the ray's line stays farther than r from the axis line (the
+        // capsule lies within the infinite cylinder of radius r around it):
+        // |oc.n| / |n| > r with n = d x ba. Only when the angle between them
+        // is not tiny (sin^2 > 1e-6), so the error of oc.n is below ~1e-12
+        // |oc| |n|; the threshold adds 2e-6 r^2 and 1e-16 |oc|^2 (as
+        // (a + b)^2 <= (1 + k) a^2 + (1 + 1/k) b^2 with k = 1e-6), so it only
+        // rejects rays the exact test misses by far more than rounding.
+        const DVec3 n = glm::cross(d, ba);
+        const double nn = glm::dot(n, n), on = glm::dot(oc, n);
+        if (nn > 1e-6 * dd * len2 && on * on > nn * (r * r * (1.0 + 2e-6) + 1e-16 * oo))
+            return std::nullopt;
     }
     const LocalRay lr = local_ray(ray, c);
 
