@@ -51,20 +51,19 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
         }
         sink.on(Level.node_visit);
         const std::uint32_t n = p.count & ~BvhEntry::kInnerBit;
+        sink.add(Level.box_test, n);
         const BvhEntry* child = bvh.entries.data() + p.first;
-        Pending hits[8];
-        int n_hits = 0;
+        // Hit children go straight onto the stack, kept sorted far to near by
+        // insertion so the nearest is popped first (equal distances pop in
+        // reverse child order).
+        const int base = top;
         for (std::uint32_t i = 0; i < n; ++i) {
-            sink.on(Level.box_test);
             const float t = intersect_box(child[i].box, origin, inv_dir, tmin, tmax);
             if (t == kInfinity) continue;
-            // Insertion keeps hits sorted far to near so the nearest child is
-            // popped first (equal distances pop in reverse child order).
-            int j = n_hits++;
-            for (; j > 0 && hits[j - 1].tnear < t; --j) hits[j] = hits[j - 1];
-            hits[j] = {child[i].first, child[i].count, t};
+            int j = top++;
+            for (; j > base && stack[j - 1].tnear < t; --j) stack[j] = stack[j - 1];
+            stack[j] = {child[i].first, child[i].count, t};
         }
-        for (int i = 0; i < n_hits; ++i) stack[top++] = hits[i];
     }
     return nearest;
 }
