@@ -72,9 +72,15 @@ struct CurveBox {
                 const Vec3 perp = q - glm::dot(q, z) * z;
                 if (glm::dot(perp, perp) > glm::dot(dev, dev)) dev = perp;
             }
+            // A deviation that is only rounding noise (a nearly straight
+            // curve) can vanish once projected across z: keep the default
+            // basis then, so the frame never turns NaN.
             Vec3 x = orthonormal_basis(z).x;
-            if (glm::length(dev) > 0.0f) x = glm::normalize(dev - glm::dot(dev, z) * z);
+            const Vec3 across = dev - glm::dot(dev, z) * z;
+            const float across_len = glm::length(across);
+            if (across_len > 0.0f && std::isfinite(across_len)) x = across / across_len;
             const Vec3 y = glm::normalize(glm::cross(z, x));
+            if (!std::isfinite(y.x) || !std::isfinite(y.y) || !std::isfinite(y.z)) continue;
             const detail::CurveBox box = detail::fit_curve_box(c, x, y, z, r, false);
             if (box.area() < best.area()) best = box;
         }

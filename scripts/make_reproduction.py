@@ -29,7 +29,7 @@ def reports(directory):
 
 
 def speedup(r, preset):
-    s = r["speedup_over_ref"].get("obb", {}).get(preset)
+    s = (r["speedup_over_ref"] or {}).get("obb", {}).get(preset)
     return s
 
 
@@ -77,7 +77,7 @@ def model_table(runs, preset):
         a = r["scene"]["surface_area"]["aabb_over_obb_paper"]
         ri, oi = is_per_ray(r, "ref"), is_per_ray(r, "obb")
         red = f"{ri / oi:.1f}x" if ri and oi else "n/a"
-        mem = r["memory_overhead_percent"].get("obb")
+        mem = (r["memory_overhead_percent"] or {}).get("obb")
         name = sp.get("scene.name", r["name"])
         lines.append(f"| {name} | {kind} | {r['scene']['primitives']:,} | "
                      f"{(f'{s:.2f}x' if s else 'n/a')} | {a:.2f} | "
@@ -97,7 +97,7 @@ def memory_table(runs):
         ref, obb = r["methods"]["ref"], r["methods"]["obb"]
         def mib(m):
             return f"{m['memory_bytes']['total'] / 2**20:,.1f} MiB" if m.get("runnable") else "n/a"
-        over = r["memory_overhead_percent"].get("obb")
+        over = (r["memory_overhead_percent"] or {}).get("obb")
         reason = "" if obb.get("runnable") else f" ({obb.get('reason')})"
         lines.append(f"| {sp.get('scene.name', r['name'])} | {r['scene']['primitives']:,} | {r['memory_preset']} | "
                      f"{mib(ref)} | {mib(obb)}{reason} | {(f'{over:.0f}%' if over is not None else 'n/a')} |")

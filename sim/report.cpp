@@ -96,7 +96,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     nlohmann::ordered_json methods;
     for (const MethodRun& m : run.methods) methods[std::string(method_name(m.method))] = method_json(m, run);
     j["methods"] = methods;
-    nlohmann::ordered_json speedups, overhead;
+    nlohmann::ordered_json speedups = nlohmann::ordered_json::object(), overhead = nlohmann::ordered_json::object();
     const MethodRun* ref = run.find(Method::Ref);
     for (const MethodRun& m : run.methods) {
         if (m.method == Method::Ref) continue;

@@ -152,3 +152,31 @@ TEST_CASE("intersect phantom: accuracy against a dense link chain, t independent
     CHECK(per_call < 7.0);
     CHECK(tmax_checked > 500);
 }
+
+TEST_CASE("intersect phantom: OBBs of nearly straight axis-aligned curves stay invertible") {
+    // From the TressFX bear with follow hairs: control points along -Y whose
+    // x and z agree to the last bit, so the polygon's deviation across the
+    // axis is pure rounding noise (the tight variant once produced NaN axes).
+    PhantomCurve c;
+    c.cp = {Vec3(19.5597477f, 0.841776371f, 15.1117582f), Vec3(19.5597477f, 0.84175086f, 15.1117582f),
+            Vec3(19.5597477f, 0.841725349f, 15.1117582f), Vec3(19.5597477f, 0.84170413f, 15.1117582f)};
+    c.radius = {0.05f, 0.05f, 0.05f, 0.05f};
+    for (const ObbVariant v : {ObbVariant::Paper, ObbVariant::Tight}) {
+        const Obb box = oriented_bounds(c, v);
+        CHECK(box.world_from_unit.inverse().has_value());
+        for (const Vec3& p : c.cp) CHECK(box.contains(p));
+    }
+    // The same along every axis direction, both signs.
+    for (int axis = 0; axis < 3; ++axis) {
+        for (const float sign : {-1.0f, 1.0f}) {
+            PhantomCurve d;
+            for (int k = 0; k < 4; ++k) {
+                Vec3 p(3.0f, -2.0f, 7.0f);
+                p[axis] += sign * 0.001f * static_cast<float>(k);
+                d.cp[k] = p;
+                d.radius[k] = 0.01f;
+            }
+            CHECK(oriented_bounds(d, ObbVariant::Tight).world_from_unit.inverse().has_value());
+        }
+    }
+}
