@@ -109,7 +109,7 @@ FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
             }
         }
         progress.advance(1);
-    });
+    }, /*grain=*/1);  // one row per hand-out: rows through the scene cost far more than sky rows
     progress.finish();
     for (Tile& t : tile_out) {  // fixed order: tile 0, 1, 2, ...
         out.totals += t.totals;
