@@ -21,36 +21,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// As simulation.cpp builds it (kept in step by hand: there it is private).
-Geometry make_geometry(const Scene& scene, const RunConfig& c) {
-    Geometry g;
-    g.kind = c.kind;
-    g.prims = to_primitives(scene.strands, c.kind, c.subdivision);
-    g.triangles.reserve(scene.mesh.triangles.size());
-    for (const auto& t : scene.mesh.triangles)
-        g.triangles.push_back({scene.mesh.vertices[t[0]], scene.mesh.vertices[t[1]],
-                               scene.mesh.vertices[t[2]]});
-    return g;
-}
-
-Aabb scene_bounds(const Geometry& g) {
-    Aabb b;
-    std::visit([&](const auto& v) { for (const auto& p : v) b.extend(bounds(p)); }, g.prims);
-    for (const Triangle& t : g.triangles) b.extend(bounds(t));
-    return b;
-}
-
 FrameResult trace_frame(const MethodAccel& accel, const Geometry& g, const RayWorkload& frame,
                         const TraceOptions& trace, unsigned threads) {
     FrameOptions fo;
     fo.threads = threads;
     fo.progress = false;
-    return std::visit(
-        [&](const auto& prims) {
-            using Prim = typename std::decay_t<decltype(prims)>::value_type;
-            return run_frame<Prim>(accel, prims, g.triangles, frame, trace, fo);
-        },
-        g.prims);
+    return run_frame(accel, g, frame, trace, fo);
 }
 
 // Best rate of `repeat` traces; every trace must count the same events.
@@ -88,14 +64,14 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     Geometry geometry;
     {
         const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
-        geometry = make_geometry(scene, c);
+        geometry = make_geometry(scene, c.kind, c.subdivision);
     }  // the strands go now: the scale case needs the memory
     out.load_seconds = seconds_since(t_load);
     out.primitives = geometry.primitive_count();
     out.triangles = geometry.triangles.size();
 
     RayWorkload frame;
-    frame.camera = make_camera(c.workload, scene_bounds(geometry));
+    frame.camera = make_camera(c.workload, geometry_bounds(geometry));
     frame.path = path_options(c.workload);
     const unsigned threads = o.threads ? o.threads : hardware_threads();
 

@@ -122,4 +122,16 @@ FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
     return out;
 }
 
+// The same for whatever primitive kind `geometry` holds (one dispatch per frame).
+inline FrameResult run_frame(const MethodAccel& method, const Geometry& geometry,
+                             const RayWorkload& frame, const TraceOptions& trace_options,
+                             const FrameOptions& options) {
+    return std::visit(
+        [&](const auto& prims) {
+            using Prim = typename std::decay_t<decltype(prims)>::value_type;
+            return run_frame<Prim>(method, prims, geometry.triangles, frame, trace_options, options);
+        },
+        geometry.prims);
+}
+
 }  // namespace rtc

@@ -20,6 +20,24 @@ std::size_t Geometry::primitive_count() const {
     return std::visit([](const auto& v) { return v.size(); }, prims);
 }
 
+Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision) {
+    Geometry g;
+    g.kind = kind;
+    g.prims = to_primitives(scene.strands, kind, subdivision);
+    g.triangles.reserve(scene.mesh.triangles.size());
+    for (const auto& t : scene.mesh.triangles)
+        g.triangles.push_back({scene.mesh.vertices[t[0]], scene.mesh.vertices[t[1]],
+                               scene.mesh.vertices[t[2]]});
+    return g;
+}
+
+Aabb geometry_bounds(const Geometry& g) {
+    Aabb b;
+    std::visit([&](const auto& v) { for (const auto& p : v) b.extend(bounds(p)); }, g.prims);
+    for (const Triangle& t : g.triangles) b.extend(bounds(t));
+    return b;
+}
+
 std::uint64_t instance_count(Method method, const Geometry& g) {
     const std::uint64_t mesh = g.triangles.empty() ? 0 : 1;
     return method == Method::Ref ? 1 + mesh : g.primitive_count() + mesh;

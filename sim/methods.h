@@ -15,6 +15,7 @@
 #include "intersectors/kinds.h"
 #include "intersectors/triangle.h"
 #include "scenes/convert.h"
+#include "scenes/scene.h"
 
 #include <array>
 #include <optional>
@@ -38,6 +39,13 @@ struct Geometry {
 
     [[nodiscard]] std::size_t primitive_count() const;
 };
+
+// Converts a scene's strands into primitives of one kind (pre-subdivided for
+// phantom curves) and its mesh into triangles.
+[[nodiscard]] Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision);
+
+// World bounds of every primitive and triangle (for camera framing).
+[[nodiscard]] Aabb geometry_bounds(const Geometry& geometry);
 
 struct MethodOptions {
     BuildOptions custom_blas;     // leaf size 1: one box per custom primitive

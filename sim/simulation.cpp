@@ -16,17 +16,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-Geometry make_geometry(const Scene& scene, const RunConfig& c) {
-    Geometry g;
-    g.kind = c.kind;
-    g.prims = to_primitives(scene.strands, c.kind, c.subdivision);
-    g.triangles.reserve(scene.mesh.triangles.size());
-    for (const auto& t : scene.mesh.triangles)
-        g.triangles.push_back({scene.mesh.vertices[t[0]], scene.mesh.vertices[t[1]],
-                               scene.mesh.vertices[t[2]]});
-    return g;
-}
-
 StructureCounts count_structures(const MethodAccel& m) {
     StructureCounts c;
     c.width = m.accel.tlas.width;
@@ -51,13 +40,6 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::str
     f.camera = make_camera(w, bounds);
     f.path = path_options(w);
     return f;
-}
-
-Aabb scene_bounds(const Geometry& g) {
-    Aabb b;
-    std::visit([&](const auto& v) { for (const auto& p : v) b.extend(bounds(p)); }, g.prims);
-    for (const Triangle& t : g.triangles) b.extend(bounds(t));
-    return b;
 }
 
 }  // namespace
@@ -90,13 +72,13 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
     r.load_seconds = seconds_since(t_load);
     const auto t_convert = std::chrono::steady_clock::now();
-    const Geometry geometry = make_geometry(scene, c);
+    const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
     r.areas = area_stats(geometry.prims);
     r.convert_seconds = seconds_since(t_convert);
 
-    RayWorkload frame = make_frame(c.workload, scene_bounds(geometry), c.file);
+    RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry), c.file);
     r.camera = frame.camera;
     bool rays_written = false;
     for (const Method method : c.methods) {
@@ -127,12 +109,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         fo.label = "trace " + name;
         fo.record_hits = c.output.write_hits;
         fo.record_rays = c.output.write_rays && !rays_written;
-        m.frame = std::visit(
-            [&](const auto& prims) {
-                using Prim = typename std::decay_t<decltype(prims)>::value_type;
-                return run_frame<Prim>(accel, prims, geometry.triangles, frame, c.trace, fo);
-            },
-            geometry.prims);
+        m.frame = run_frame(accel, geometry, frame, c.trace, fo);
         if (!ctx.out_dir.empty() && fo.record_rays) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
             rays_written = true;
