@@ -101,7 +101,7 @@ namespace {
 
 CalibrateDesc parse_calibrate(const JsonReader& r) {
     r.allow_only({"parameters", "targets", "output", "name", "description", "reference",
-                  "max_iterations"});
+                  "max_iterations", "start"});
     CalibrateDesc d;
     std::vector<std::string> seen;
     const std::size_t np = array_of(r, "parameters", "parameters").size();
@@ -119,6 +119,7 @@ CalibrateDesc parse_calibrate(const JsonReader& r) {
     d.name = r.string("name", "");
     d.description = r.string("description", "");
     d.reference = r.string("reference", d.reference);
+    d.start = r.string("start", "");
     d.max_iterations = static_cast<int>(r.integer("max_iterations", d.max_iterations, 1, 100000));
     return d;
 }

@@ -34,6 +34,7 @@ struct CalibrateDesc {
     std::string name;         // of the fitted preset; empty: "<start>-calibrated"
     std::string description;  // empty: keep the start preset's
     std::string reference = "target speedups";  // what the targets are, for provenance
+    std::string start;  // preset the fit starts from; empty: the run's first cost preset
     int max_iterations = 200;
 };
 

@@ -5,6 +5,7 @@
 #include "sim/calibrate_report.h"
 #include "sim/json_file.h"
 #include "sim/json_reader.h"
+#include "sim/run_config.h"
 #include "sim/plot_svg.h"
 #include "sim/report.h"
 #include "sim/sweep.h"
@@ -74,7 +75,12 @@ void calibrate_runs(const std::vector<RunResult>& runs, const nlohmann::json& co
     if (fit_runs.empty()) throw InputError(file + ": /calibrate/targets: no run has a target");
     CalibrationResult result;
     try {
-        result = calibrate(fit_runs, runs.front().costs.front(), desc.parameters, calibration_options(desc));
+        // Start from the named preset (so refitting does not start from its own
+        // previous output), else from the run's primary cost preset.
+        const CostModel start = desc.start.empty()
+                                    ? runs.front().costs.front()
+                                    : load_cost_model(resolve_config_path(desc.start, file));
+        result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
     } catch (const std::invalid_argument& e) {
         throw InputError(file + ": /calibrate: " + e.what());
     }

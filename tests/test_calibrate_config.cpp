@@ -36,6 +36,7 @@ const char* kGood = R"({"calibrate": {
     {"label": "hair", "speedup": 5.9}],
   "output": "configs/hw/turing-calibrated.json",
   "name": "turing-calibrated",
+  "start": "../hw/turing-guess.json",
   "reference": "Wald et al. 2020 synthetic table"}})";
 
 }  // namespace
@@ -43,6 +44,7 @@ const char* kGood = R"({"calibrate": {
 TEST_CASE("calibrate config: a full block parses") {
     const CalibrateDesc d = parse(kGood);
     REQUIRE(d.parameters.size() == 2);
+    CHECK(d.start == "../hw/turing-guess.json");
     CHECK(d.parameters[0].events == std::vector<Event>{Event::ContextSwitch});
     CHECK(d.parameters[0].lo == 50);
     CHECK(d.parameters[0].hi == 1000);
@@ -105,7 +107,7 @@ TEST_CASE("calibrate config: errors name the file and JSON path") {
 
     CHECK(error_of(block(params + "," + targets + R"(, "outptu": "x")")) ==
           "runs/x.json: /calibrate/outptu: unknown key (expected one of: parameters, targets, output, "
-          "name, description, reference, max_iterations)");
+          "name, description, reference, max_iterations, start)");
     CHECK(error_of(block(targets)) ==
           "runs/x.json: /calibrate/parameters: missing (expected a non-empty array of parameters)");
     CHECK(error_of(block(params + R"(, "targets": [])")) ==
