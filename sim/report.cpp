@@ -90,6 +90,15 @@ nlohmann::ordered_json report_json(const RunResult& run) {
                                   {"obb_tight", run.areas.obb_tight},
                                   {"aabb_over_obb_paper", run.areas.ratio_paper()},
                                   {"aabb_over_obb_tight", run.areas.ratio_tight()}};
+    if (run.config.workload.type != WorkloadType::Rays) {
+        const Camera& c = run.camera;  // resolved: what "auto" framing chose
+        j["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
+                       {"target", {c.target.x, c.target.y, c.target.z}},
+                       {"up", {c.up.x, c.up.y, c.up.z}},
+                       {"fov_deg", c.fov_deg},
+                       {"width", c.width},
+                       {"height", c.height}};
+    }
     j["cost_presets"] = nlohmann::ordered_json::array();
     for (const CostModel& c : run.costs) j["cost_presets"].push_back(c.name);
     j["memory_preset"] = run.memory.name;
