@@ -90,4 +90,9 @@ struct Occupied {
 [[nodiscard]] Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map,
                                    float area_of_node, const BuildOptions& o);
 
+// find_sah_split for a node of exactly two primitives, r0 and r1 in bins b0
+// and b1 (from BinMap::of): the same split, bit for bit, without the bins.
+[[nodiscard]] Split find_pair_split(const Ref& r0, const Ref& r1, I4 b0, I4 b1, const BinMap& map,
+                                    float area_of_node, const BuildOptions& o);
+
 }  // namespace rtc::bvh_detail
