@@ -20,11 +20,16 @@ struct BinMap {
     int bins;
     Vec3 lo, scale;
     std::array<bool, 3> active;  // axes along which the centroids spread
+    V4 lo4, scale4;              // lo and scale in lanes, built once per node
+    I4 last;                     // bins - 1 in every lane
     BinMap(const Aabb& cbox, int n_bins) : bins(n_bins), lo(cbox.lo) {
         for (int axis = 0; axis < 3; ++axis) {
             active[axis] = cbox.hi[axis] > cbox.lo[axis];
             scale[axis] = static_cast<float>(bins) / (cbox.hi[axis] - cbox.lo[axis]);
         }
+        lo4 = V4{lo.x, lo.y, lo.z, 0.0f};
+        scale4 = V4{scale.x, scale.y, scale.z, 0.0f};
+        last = I4{} + (bins - 1);
     }
     [[nodiscard]] int of(const Vec3& c, int axis) const {
         return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
@@ -32,8 +37,7 @@ struct BinMap {
     // All three axes at once, lane-wise exactly as of() computes them; an axis
     // without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
-        const V4 lo4{lo.x, lo.y, lo.z, 0.0f}, scale4{scale.x, scale.y, scale.z, 0.0f};
-        const I4 zero{}, last = zero + (bins - 1);
+        const I4 zero{};
         I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo4) * scale4, I4);
         b = b < zero ? zero : b;
         return b > last ? last : b;
