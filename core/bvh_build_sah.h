@@ -22,6 +22,7 @@ struct BinMap {
     std::array<bool, 3> active;  // axes along which the centroids spread
     V4 lo4, scale4;              // lo and scale in lanes, built once per node
     I4 last;                     // bins - 1 in every lane
+    V4 lastf;                    // the same as floats
     BinMap(const Aabb& cbox, int n_bins) : bins(n_bins), lo(cbox.lo) {
         for (int axis = 0; axis < 3; ++axis) {
             active[axis] = cbox.hi[axis] > cbox.lo[axis];
@@ -30,6 +31,7 @@ struct BinMap {
         lo4 = V4{lo.x, lo.y, lo.z, 0.0f};
         scale4 = V4{scale.x, scale.y, scale.z, 0.0f};
         last = I4{} + (bins - 1);
+        lastf = V4{} + static_cast<float>(bins - 1);
     }
     [[nodiscard]] int of(const Vec3& c, int axis) const {
         return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
@@ -37,10 +39,19 @@ struct BinMap {
     // All three axes at once, lane-wise exactly as of() computes them; an axis
     // without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
+        const V4 x = (r.lanes(r.centroid) - lo4) * scale4;
+#ifdef __SSE__
+        // Clamped as floats (SSE2 has no integer min/max): the same bins,
+        // including the conversion's quirks that of() has too: NaN (maxps
+        // picks 0) and x >= 2^31 (cvttps gives INT_MIN) land in bin 0.
+        const V4 y = _mm_min_ps(_mm_max_ps(x, V4{}), lastf);
+        return __builtin_convertvector(y, I4) & (x < 2147483648.0f);
+#else
         const I4 zero{};
-        I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo4) * scale4, I4);
+        I4 b = __builtin_convertvector(x, I4);
         b = b < zero ? zero : b;
         return b > last ? last : b;
+#endif
     }
 };
 
