@@ -216,7 +216,7 @@ private:
             std::uint32_t n_left = 0;
             for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
             return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
-                return map.of(src[i].centroid, best.axis) < best.bin;
+                return map.of(src[i])[best.axis] < best.bin;
             }, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
@@ -232,7 +232,7 @@ private:
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = map.of(src[i].centroid, best.axis) < best.bin;
+                const bool goes_left = map.of(src[i])[best.axis] < best.bin;
                 dst[goes_left ? l++ : r++] = src[i];
                 parts[k][goes_left ? 0 : 1].add(src[i]);
             }

@@ -33,17 +33,15 @@ struct BinMap {
         last = I4{} + (bins - 1);
         lastf = V4{} + static_cast<float>(bins - 1);
     }
-    [[nodiscard]] int of(const Vec3& c, int axis) const {
-        return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
-    }
-    // All three axes at once, lane-wise exactly as of() computes them; an axis
-    // without spread puts everything into bin 0.
+    // All three axes at once (also for the partition: one axis alone costs no
+    // less): clamp(int((c - lo) * scale), 0, bins - 1) in each lane, with
+    // the conversion's quirks (NaN and |x| >= 2^31 give INT_MIN, so bin 0).
+    // An axis without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
         const V4 x = (r.lanes(r.centroid) - lo4) * scale4;
 #ifdef __SSE__
-        // Clamped as floats (SSE2 has no integer min/max): the same bins,
-        // including the conversion's quirks that of() has too: NaN (maxps
-        // picks 0) and x >= 2^31 (cvttps gives INT_MIN) land in bin 0.
+        // Clamped as floats (SSE2 has no integer min/max), to the same bins:
+        // maxps picks 0 for NaN, and the mask sends x >= 2^31 to bin 0.
         const V4 y = _mm_min_ps(_mm_max_ps(x, V4{}), lastf);
         return __builtin_convertvector(y, I4) & (x < 2147483648.0f);
 #else
