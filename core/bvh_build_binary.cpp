@@ -79,7 +79,13 @@ public:
         Split best;
         if (o.strategy == SplitStrategy::Sah && t.depth < kMaxSahDepth) {
             const float area = t.bounds.box.surface_area();
-            if (small) {
+            if (count == 2) {  // a third of all nodes: a closed form, no bins
+                const Ref& r0 = src[t.begin];
+                const Ref& r1 = src[t.begin + 1];
+                small_bin_[0] = map.of(r0);
+                small_bin_[1] = map.of(r1);
+                best = find_pair_split(r0, r1, small_bin_[0], small_bin_[1], map, area, o);
+            } else if (small) {
                 best = find_sah_split(bin_small(src, t, map), small_used_, map, area, o);
             } else {
                 const Bins& bins = bin(src, t, map, threads);
@@ -91,6 +97,17 @@ public:
         std::uint32_t mid;
         if (best.axis < 0) {
             mid = median_split(src, dst, t, left.bounds, right.bounds);
+        } else if (count == 2) {
+            // The lower-bin primitive goes left; a lone reference's bounds
+            // are its own box and centroid, as partition_serial folds them.
+            const bool swap = small_bin_[1][best.axis] < best.bin;
+            const Ref& l = src[t.begin + swap];
+            const Ref& r = src[t.begin + !swap];
+            dst[t.begin] = l;
+            dst[t.begin + 1] = r;
+            left.bounds = {l.box(), {l.centroid, l.centroid}};
+            right.bounds = {r.box(), {r.centroid, r.centroid}};
+            mid = t.begin + 1;
         } else if (small) {
             const auto goes_left = [&](std::uint32_t i) { return small_bin_[i - t.begin][best.axis] < best.bin; };
             std::uint32_t n_left = 0;
@@ -199,7 +216,7 @@ private:
             std::uint32_t n_left = 0;
             for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
             return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
-                return map.of(src[i].centroid, best.axis) < best.bin;
+                return map.of(src[i])[best.axis] < best.bin;
             }, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
@@ -215,7 +232,7 @@ private:
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = map.of(src[i].centroid, best.axis) < best.bin;
+                const bool goes_left = map.of(src[i])[best.axis] < best.bin;
                 dst[goes_left ? l++ : r++] = src[i];
                 parts[k][goes_left ? 0 : 1].add(src[i]);
             }

@@ -14,6 +14,14 @@ float area(const Box4& b) {
     return 2.0f * (p[0] + p[1] + p[2]);
 }
 
+// The SAH cost of a plane, given area x count of each side; one function so
+// that both sweeps round (and contract) alike.
+float plane_cost(const BuildOptions& o, float left, float right, float inv_area) {
+    return o.traversal_cost + o.intersection_cost * (left + right) * inv_area;
+}
+
+float inverse_area(float area_of_node) { return area_of_node > 0.0f ? 1.0f / area_of_node : 0.0f; }
+
 }  // namespace
 
 // The binned SAH sweep: for every axis and plane, the cost of splitting there.
@@ -22,7 +30,7 @@ float area(const Box4& b) {
 // the same cost and would lose the tie anyway. This keeps small nodes cheap.
 Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, float area_of_node,
                      const BuildOptions& o) {
-    const float inv_area = area_of_node > 0.0f ? 1.0f / area_of_node : 0.0f;
+    const float inv_area = inverse_area(area_of_node);
     Split best;
     for (int axis = 0; axis < 3; ++axis) {
         if (!map.active[axis]) continue;
@@ -44,13 +52,34 @@ Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, 
         for (int j = 1; j < m; ++j) {  // plane after bin u[j - 1]
             acc.extend(box[u[j - 1]].lo, box[u[j - 1]].hi);
             n += count[u[j - 1]];
-            const float cost =
-                o.traversal_cost +
-                o.intersection_cost * (area(acc) * static_cast<float>(n) + right_cost[j]) * inv_area;
+            const float cost = plane_cost(o, area(acc) * static_cast<float>(n), right_cost[j], inv_area);
             if (cost < best.cost) best = {axis, u[j - 1] + 1, cost};  // strict: ties keep the first
         }
     }
     return best;
+}
+
+// Two primitives: an axis whose bins differ has exactly two occupied bins and
+// one plane, priced area(lower) * 1 + area(upper) * 1. That sum is the same
+// on every such axis (the primitives' own boxes; addition commutes exactly),
+// so the first such axis wins the tie and the rest need no pricing. An axis
+// whose bins agree has no plane at all. A NaN or infinite cost is never below
+// the initial infinity, as in the sweep.
+Split find_pair_split(const Ref& r0, const Ref& r1, I4 b0, I4 b1, const BinMap& map,
+                      float area_of_node, const BuildOptions& o) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!map.active[axis] || b0[axis] == b1[axis]) continue;
+        const bool first_lower = b0[axis] < b1[axis];
+        const Ref& lower = first_lower ? r0 : r1;
+        const Ref& upper = first_lower ? r1 : r0;
+        const float cost = plane_cost(o, area({lower.lanes(lower.lo), lower.lanes(lower.hi)}) * 1.0f,
+                                      area({upper.lanes(upper.lo), upper.lanes(upper.hi)}) * 1.0f,
+                                      inverse_area(area_of_node));
+        Split best;
+        if (cost < best.cost) best = {axis, std::min(b0[axis], b1[axis]) + 1, cost};
+        return best;
+    }
+    return {};
 }
 
 }  // namespace rtc::bvh_detail

@@ -20,23 +20,36 @@ struct BinMap {
     int bins;
     Vec3 lo, scale;
     std::array<bool, 3> active;  // axes along which the centroids spread
+    V4 lo4, scale4;              // lo and scale in lanes, built once per node
+    I4 last;                     // bins - 1 in every lane
+    V4 lastf;                    // the same as floats
     BinMap(const Aabb& cbox, int n_bins) : bins(n_bins), lo(cbox.lo) {
         for (int axis = 0; axis < 3; ++axis) {
             active[axis] = cbox.hi[axis] > cbox.lo[axis];
             scale[axis] = static_cast<float>(bins) / (cbox.hi[axis] - cbox.lo[axis]);
         }
+        lo4 = V4{lo.x, lo.y, lo.z, 0.0f};
+        scale4 = V4{scale.x, scale.y, scale.z, 0.0f};
+        last = I4{} + (bins - 1);
+        lastf = V4{} + static_cast<float>(bins - 1);
     }
-    [[nodiscard]] int of(const Vec3& c, int axis) const {
-        return std::clamp(static_cast<int>((c[axis] - lo[axis]) * scale[axis]), 0, bins - 1);
-    }
-    // All three axes at once, lane-wise exactly as of() computes them; an axis
-    // without spread puts everything into bin 0.
+    // All three axes at once (also for the partition: one axis alone costs no
+    // less): clamp(int((c - lo) * scale), 0, bins - 1) in each lane, with
+    // the conversion's quirks (NaN and |x| >= 2^31 give INT_MIN, so bin 0).
+    // An axis without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
-        const V4 lo4{lo.x, lo.y, lo.z, 0.0f}, scale4{scale.x, scale.y, scale.z, 0.0f};
-        const I4 zero{}, last = zero + (bins - 1);
-        I4 b = __builtin_convertvector((r.lanes(r.centroid) - lo4) * scale4, I4);
+        const V4 x = (r.lanes(r.centroid) - lo4) * scale4;
+#ifdef __SSE__
+        // Clamped as floats (SSE2 has no integer min/max), to the same bins:
+        // maxps picks 0 for NaN, and the mask sends x >= 2^31 to bin 0.
+        const V4 y = _mm_min_ps(_mm_max_ps(x, V4{}), lastf);
+        return __builtin_convertvector(y, I4) & (x < 2147483648.0f);
+#else
+        const I4 zero{};
+        I4 b = __builtin_convertvector(x, I4);
         b = b < zero ? zero : b;
         return b > last ? last : b;
+#endif
     }
 };
 
@@ -89,5 +102,10 @@ struct Occupied {
 // lowest cost, ties to the smallest axis and bin.
 [[nodiscard]] Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map,
                                    float area_of_node, const BuildOptions& o);
+
+// find_sah_split for a node of exactly two primitives, r0 and r1 in bins b0
+// and b1 (from BinMap::of): the same split, bit for bit, without the bins.
+[[nodiscard]] Split find_pair_split(const Ref& r0, const Ref& r1, I4 b0, I4 b1, const BinMap& map,
+                                    float area_of_node, const BuildOptions& o);
 
 }  // namespace rtc::bvh_detail
