@@ -77,12 +77,15 @@ struct Frame {
 
     bool legend_inside = false;  // top-left inside the plot area, else right of it
     double legend_w = 0.0;
+    int canvas_width = 0;  // axes.width, widened by an outside legend so long
+                           // series names never squeeze the plot area
 
     Frame(const PlotAxes& ax, const std::vector<double>& xs, const std::vector<double>& ys,
           const std::vector<LegendEntry>& legend, bool inside)
         : axes(ax), x(make_axis(xs, ax.log_x)), y(make_axis(ys, ax.log_y)), legend_inside(inside) {
         for (const auto& e : legend) legend_w = std::max(legend_w, 34.0 + kCharWidth * static_cast<double>(e.name.size()));
-        right = axes.width - 20.0 - (legend.empty() || legend_inside ? 0.0 : legend_w + 10.0);
+        right = axes.width - 20.0;
+        canvas_width = axes.width + (legend.empty() || legend_inside ? 0 : static_cast<int>(legend_w + 10.0));
         bottom = axes.height - 50.0;
         if (axes.title.empty()) top = 20;
     }
@@ -92,8 +95,8 @@ struct Frame {
     std::string open(const std::vector<LegendEntry>& legend) const {
         std::string s;
         s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-        s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + std::to_string(axes.width) +
-             "\" height=\"" + std::to_string(axes.height) + "\" viewBox=\"0 0 " + std::to_string(axes.width) + " " +
+        s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + std::to_string(canvas_width) +
+             "\" height=\"" + std::to_string(axes.height) + "\" viewBox=\"0 0 " + std::to_string(canvas_width) + " " +
              std::to_string(axes.height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
         s += "<defs><clipPath id=\"plot-area\"><rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" +
              num(right - left) + "\" height=\"" + num(bottom - top) + "\"/></clipPath></defs>\n";
