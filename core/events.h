@@ -5,6 +5,8 @@
 // entry per event with a parallel name table: configs refer to events by name.
 #pragma once
 
+#include "core/enum_names.h"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -51,9 +53,7 @@ static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNa
 }
 
 [[nodiscard]] constexpr std::optional<Event> event_from_name(std::string_view name) {
-    for (std::size_t i = 0; i < kEventCount; ++i)
-        if (kEventNames[i] == name) return static_cast<Event>(i);
-    return std::nullopt;
+    return enum_from_name<Event>(kEventNames, name);
 }
 
 }  // namespace rtc

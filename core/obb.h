@@ -20,10 +20,6 @@ struct Obb {
         return {Affine::from_columns(axis_x * half_extent.x, axis_y * half_extent.y,
                                      axis_z * half_extent.z, center)};
     }
-    [[nodiscard]] static Obb from_aabb(const Aabb& b) {
-        return {Affine::from_columns({b.extent().x * 0.5f, 0, 0}, {0, b.extent().y * 0.5f, 0},
-                                     {0, 0, b.extent().z * 0.5f}, b.center())};
-    }
 
     [[nodiscard]] Vec3 center() const { return world_from_unit.translation; }
     [[nodiscard]] Vec3 half_axis(int i) const { return world_from_unit.linear[i]; }

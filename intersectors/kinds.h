@@ -2,6 +2,8 @@
 // bounding programs (enums with a switch, not class hierarchies).
 #pragma once
 
+#include "core/enum_names.h"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -23,17 +25,13 @@ inline constexpr std::array<std::string_view, 2> kObbVariantNames = {"paper", "t
     return kPrimitiveKindNames[static_cast<std::size_t>(k)];
 }
 [[nodiscard]] constexpr std::optional<PrimitiveKind> kind_from_name(std::string_view s) {
-    for (std::size_t i = 0; i < kPrimitiveKindNames.size(); ++i)
-        if (kPrimitiveKindNames[i] == s) return static_cast<PrimitiveKind>(i);
-    return std::nullopt;
+    return enum_from_name<PrimitiveKind>(kPrimitiveKindNames, s);
 }
 [[nodiscard]] constexpr std::string_view obb_variant_name(ObbVariant v) {
     return kObbVariantNames[static_cast<std::size_t>(v)];
 }
 [[nodiscard]] constexpr std::optional<ObbVariant> obb_variant_from_name(std::string_view s) {
-    for (std::size_t i = 0; i < kObbVariantNames.size(); ++i)
-        if (kObbVariantNames[i] == s) return static_cast<ObbVariant>(i);
-    return std::nullopt;
+    return enum_from_name<ObbVariant>(kObbVariantNames, s);
 }
 
 }  // namespace rtc

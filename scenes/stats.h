@@ -7,10 +7,11 @@
 #include "scenes/scene.h"
 
 #include <cstddef>
-#include <optional>
 
 namespace rtc {
 
+// The AABB/OBB surface-area figures need the primitives' bounding programs
+// for a chosen kind, so they live beside the methods: sim/area_stats.h.
 struct SceneStats {
     std::size_t strands = 0;
     std::size_t segments = 0;
@@ -20,11 +21,6 @@ struct SceneStats {
     double mean_segment_length = 0.0;
     double mean_radius = 0.0;             // per segment: mean of its two point radii
     double mean_length_over_radius = 0.0; // per segment, over segments with radius > 0 (0 if none)
-
-    // Surface-area figures of the primitives' bounding boxes, which need the
-    // intersectors' bounds programs; filled by the sim layer, empty here.
-    std::optional<double> total_aabb_area;
-    std::optional<double> total_obb_area;
 };
 
 [[nodiscard]] SceneStats compute_stats(const Scene& scene);

@@ -11,9 +11,7 @@
 namespace rtc {
 
 std::optional<Method> method_from_name(std::string_view s) {
-    for (std::size_t i = 0; i < kMethodNames.size(); ++i)
-        if (kMethodNames[i] == s) return static_cast<Method>(i);
-    return std::nullopt;
+    return enum_from_name<Method>(kMethodNames, s);
 }
 
 std::size_t Geometry::primitive_count() const {

@@ -73,7 +73,6 @@ TEST_CASE("scene stats: counts, bounds, means") {
     CHECK(st.bounds.lo.z == doctest::Approx(-0.5f));       // points with r 0.5
     CHECK(st.bounds.hi.y == doctest::Approx(7.5f));
     CHECK(st.bounds.hi.z == 4.0f);
-    CHECK_FALSE(st.total_aabb_area.has_value());
 
     const SceneStats b = compute_stats(make_bundle({100, 0.01f, 0.0f, 1}));
     CHECK(b.mean_segment_length == doctest::Approx(1.0));
