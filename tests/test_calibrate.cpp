@@ -1,7 +1,7 @@
 // Calibration: recovery of known costs from synthetic counts, bounds,
 // identifiability flags, error bars and determinism (sim/calibrate.h).
-#include "sim/calibrate.h"
-#include "sim/calibrate_report.h"
+#include "sim/calibrate/calibrate.h"
+#include "sim/calibrate/calibrate_report.h"
 
 #include <doctest/doctest.h>
 

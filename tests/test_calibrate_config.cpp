@@ -1,6 +1,6 @@
 // The `calibrate` config block: parsing, error paths, and matching targets to
 // sweep points and labels (sim/calibrate_config.h).
-#include "sim/calibrate_config.h"
+#include "sim/calibrate/calibrate_config.h"
 
 #include <doctest/doctest.h>
 

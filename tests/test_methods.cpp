@@ -4,7 +4,7 @@
 // and without a mesh; and their all-candidates IS call counts equal brute
 // force over the primitives' AABBs and OBBs.
 #include "core_test_util.h"
-#include "sim/trace_ray.h"
+#include "sim/methods/trace_ray.h"
 
 #include <doctest/doctest.h>
 

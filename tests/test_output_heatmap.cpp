@@ -1,7 +1,7 @@
 // Tests for sim/colormap and sim/heatmap: map ends, scales, colour bar,
 // no-data grey, shared percentile scale, ratio maps centred at 1.
-#include "sim/colormap.h"
-#include "sim/heatmap.h"
+#include "sim/plot/colormap.h"
+#include "sim/plot/heatmap.h"
 
 #include <doctest/doctest.h>
 

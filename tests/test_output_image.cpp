@@ -1,8 +1,8 @@
 // Tests for sim/image (pixels, PNG round trip, tone mapping, write errors)
 // and sim/text_raster (ink lands inside the measured box, scaling, alignment).
 #include "core/input_error.h"
-#include "sim/image.h"
-#include "sim/text_raster.h"
+#include "sim/plot/image.h"
+#include "sim/plot/text_raster.h"
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
 // Tests for sim/plot_svg: well-formed SVG (balanced tags), series names and
 // escaped text present, deterministic bytes, log axes, fitted guide.
 #include "core/input_error.h"
-#include "sim/plot_svg.h"
+#include "sim/plot/plot_svg.h"
 
 #include <doctest/doctest.h>
 

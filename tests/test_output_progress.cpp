@@ -1,6 +1,6 @@
 // Tests for sim/progress: silent when disabled, plain lines when not a TTY,
 // in-place redraws on a TTY, exact counts under concurrent advance().
-#include "sim/progress.h"
+#include "sim/util/progress.h"
 
 #include <doctest/doctest.h>
 

@@ -1,7 +1,7 @@
 // Tests for sim/table (CSV quoting, Markdown and console alignment), the
 // number formatting helpers, and sim/ticks.
-#include "sim/table.h"
-#include "sim/ticks.h"
+#include "sim/util/table.h"
+#include "sim/plot/ticks.h"
 
 #include <doctest/doctest.h>
 

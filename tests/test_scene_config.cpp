@@ -1,6 +1,6 @@
 // The scene block of a config: each type, path resolution, defaults, and the
 // errors (unknown keys, bad values, missing radius) naming file and JSON path.
-#include "sim/scene_config.h"
+#include "sim/config/scene_config.h"
 
 #include <doctest/doctest.h>
 

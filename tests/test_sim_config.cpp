@@ -1,9 +1,9 @@
 // CLI parsing, --set overrides, sweep expansion, cost and memory presets.
 #include "core/input_error.h"
-#include "sim/cli.h"
-#include "sim/cost_model.h"
-#include "sim/memory_model.h"
-#include "sim/sweep.h"
+#include "sim/app/cli.h"
+#include "sim/hardware/cost_model.h"
+#include "sim/hardware/memory_model.h"
+#include "sim/config/sweep.h"
 
 #include <doctest/doctest.h>
 

@@ -2,9 +2,9 @@
 // and agree, ray files replay to the same hits, thread counts do not change
 // anything, and bad configs fail with one line naming the file and JSON path.
 #include "core/input_error.h"
-#include "sim/json_file.h"
-#include "sim/ray_file.h"
-#include "sim/run_all.h"
+#include "sim/util/json_file.h"
+#include "sim/workload/ray_file.h"
+#include "sim/app/run_all.h"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Tests of the "workload" config section: defaults, every key, and errors
 // that name the file and the JSON path of the offending value.
-#include "sim/workload_config.h"
+#include "sim/config/workload_config.h"
 
 #include <doctest/doctest.h>
 

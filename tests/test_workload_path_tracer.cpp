@@ -1,6 +1,6 @@
 // Tests of the path-tracing workload against analytic scenes traced by hand:
 // furnace tests with closed-form radiance, ray counts, determinism.
-#include "sim/path_tracer.h"
+#include "sim/workload/path_tracer.h"
 
 #include <doctest/doctest.h>
 

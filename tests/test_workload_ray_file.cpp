@@ -1,6 +1,6 @@
 // Tests of the binary ray and hit files: bit-exact round trips, and corrupt
 // files rejected with the file name and the byte offset of the bad record.
-#include "sim/ray_file.h"
+#include "sim/workload/ray_file.h"
 
 #include "core/input_error.h"
 

@@ -1,8 +1,8 @@
 // Tests of ray generation: the counter-based RNG, sampling warps, the pinhole
 // camera and automatic framing.
-#include "sim/camera.h"
-#include "sim/rng.h"
-#include "sim/sampling.h"
+#include "sim/workload/camera.h"
+#include "sim/workload/rng.h"
+#include "sim/workload/sampling.h"
 
 #include "core/input_error.h"
 

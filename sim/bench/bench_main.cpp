@@ -1,0 +1,206 @@
+// `bench`: the simulator's performance benchmark (issue 8). Runs the standard
+// cases (sim/bench_cases.cpp) through the code simulate uses and prints, per
+// method: build time, rays per second on 1 thread and on all threads,
+// intersection-program calls per ray and bytes per primitive of the
+// simulator's own structures. docs/benchmark.md has the figures and how to
+// rerun them.
+#include "core/input_error.h"
+#include "core/parallel.h"
+#include "sim/bench/bench_run.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace {
+
+using namespace rtc;
+
+constexpr const char* kHelp =
+    "usage: bench [options]\n"
+    "  --cases LIST   comma-separated case numbers (default 1,2,3,4,5)\n"
+    "                 1: bundle N=1000 r=0.002 tilt 45   2: same, tilt 0\n"
+    "                 3: bundle N=100000 r=0.0005 tilt 30 (obb)\n"
+    "                 4: Sintel hair + head (capsules, phantom)   5: 2 M fur, path tracing\n"
+    "  --scale        run only the scale case: 2^24 obb instances, peak memory (heavy)\n"
+    "  --threads N    threads of the 'all threads' figure (default: all cores)\n"
+    "  --repeat K     best of K traces per figure (default 3)\n"
+    "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
+    "  --json FILE    also write the figures as JSON\n"
+    "  --methods LIST only these methods (ref, obb) where a case has them\n"
+    "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
+    "  --help         this text\n";
+
+struct Cli {
+    std::set<int> cases{1, 2, 3, 4, 5};
+    bool scale = false;
+    BenchOptions bench;
+    std::string data = "../shared/data";
+    std::string json_file;
+    int pixels = 0;  // 0: each case's own resolution
+    std::set<std::string> methods{"ref", "obb"};
+};
+
+Cli parse(int argc, char** argv) {
+    Cli cli;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw InputError("bench: " + a + " needs a value");
+            return argv[++i];
+        };
+        const auto number = [&](int lo) {
+            const std::string v = value();
+            std::size_t used = 0;
+            int n = 0;
+            try { n = std::stoi(v, &used); } catch (const std::exception&) { used = 0; }
+            if (used != v.size() || n < lo)
+                throw InputError("bench: " + a + ": expected an integer >= " + std::to_string(lo) +
+                                 ", got \"" + v + "\"");
+            return n;
+        };
+        if (a == "--help" || a == "-h") {
+            std::cout << kHelp;
+            std::exit(0);
+        } else if (a == "--cases") {
+            cli.cases.clear();
+            std::stringstream list(value());
+            for (std::string item; std::getline(list, item, ',');) {
+                if (item.size() != 1 || item[0] < '1' || item[0] > '5')
+                    throw InputError("bench: --cases: unknown case \"" + item + "\" (1..5)");
+                cli.cases.insert(item[0] - '0');
+            }
+        } else if (a == "--scale") {
+            cli.scale = true;
+        } else if (a == "--threads") {
+            cli.bench.threads = static_cast<unsigned>(number(1));
+        } else if (a == "--repeat") {
+            cli.bench.repeat = number(1);
+        } else if (a == "--data") {
+            cli.data = value();
+        } else if (a == "--methods") {
+            cli.methods.clear();
+            std::stringstream list(value());
+            for (std::string item; std::getline(list, item, ',');) {
+                if (item != "ref" && item != "obb")
+                    throw InputError("bench: --methods: unknown method \"" + item + "\"");
+                cli.methods.insert(item);
+            }
+        } else if (a == "--pixels") {
+            cli.pixels = number(1);
+        } else if (a == "--json") {
+            cli.json_file = value();
+        } else {
+            throw InputError("bench: unknown option \"" + a + "\" (see --help)");
+        }
+    }
+    return cli;
+}
+
+void print_run(const RunFigures& r) {
+    std::printf("  %s (%s): %llu primitives, %llu triangles, scene %.2f s\n", r.label.c_str(),
+                r.kind.c_str(), static_cast<unsigned long long>(r.primitives),
+                static_cast<unsigned long long>(r.triangles), r.load_seconds);
+    std::printf("    %-6s %9s %10s %12s %12s %8s %10s %10s %9s\n", "method", "build s", "rays",
+                "Mrays/s 1t", "Mrays/s nt", "scaling", "IS/ray", "boxes/ray", "B/prim");
+    for (const MethodFigures& m : r.methods) {
+        const double scaling =
+            m.rays_per_second_1t > 0.0 ? m.rays_per_second_nt / m.rays_per_second_1t : 0.0;
+        std::printf("    %-6s %9.3f %10llu %12.3f %9.3f(%u) %7.2fx %10.2f %10.2f %9.1f%s\n",
+                    m.method.c_str(), m.build_seconds, static_cast<unsigned long long>(m.rays),
+                    m.rays_per_second_1t * 1e-6, m.rays_per_second_nt * 1e-6, m.threads, scaling,
+                    m.is_calls_per_ray, m.box_tests_per_ray, m.bytes_per_primitive,
+                    m.counts_match ? "" : "  COUNTS DIFFER BETWEEN RUNS");
+    }
+}
+
+nlohmann::json to_json(const RunFigures& r) {
+    nlohmann::json j = {{"label", r.label}, {"kind", r.kind}, {"primitives", r.primitives},
+                        {"triangles", r.triangles}, {"load_seconds", r.load_seconds}};
+    for (const MethodFigures& m : r.methods) {
+        nlohmann::json events;
+        for (std::size_t e = 0; e < kEventCount; ++e)
+            events[std::string(kEventNames[e])] = m.totals.n[e];
+        j["methods"].push_back({{"method", m.method},
+                                {"build_seconds", m.build_seconds},
+                                {"rays", m.rays},
+                                {"rays_per_second_1_thread", m.rays_per_second_1t},
+                                {"rays_per_second_all_threads", m.rays_per_second_nt},
+                                {"threads", m.threads},
+                                {"is_calls_per_ray", m.is_calls_per_ray},
+                                {"box_tests_per_ray", m.box_tests_per_ray},
+                                {"bytes_per_primitive", m.bytes_per_primitive},
+                                {"counts_match", m.counts_match},
+                                {"events", events}});
+    }
+    return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        Cli cli = parse(argc, argv);
+        std::vector<BenchCase> cases;
+        if (cli.scale) {
+            cases.push_back(scale_case());
+            cli.bench.single_thread = false;  // one all-threads trace is enough here
+            cli.bench.repeat = 1;
+        } else {
+            for (BenchCase& c : standard_cases(cli.data))
+                if (cli.cases.count(c.id)) cases.push_back(std::move(c));
+        }
+        const unsigned threads = cli.bench.threads ? cli.bench.threads : hardware_threads();
+        std::printf("bench: %u threads for the 'nt' figures, best of %d traces; counting sinks on\n",
+                    threads, cli.bench.repeat);
+        nlohmann::json out = {{"threads", threads}, {"repeat", cli.bench.repeat}};
+        for (BenchCase& c : cases) {
+            for (BenchRun& run : c.runs) {
+                if (cli.pixels > 0)
+                    run.config["workload"]["width"] = run.config["workload"]["height"] = cli.pixels;
+                nlohmann::json kept = nlohmann::json::array();
+                for (const auto& m : run.config["methods"])
+                    if (cli.methods.count(m.get<std::string>())) kept.push_back(m);
+                run.config["methods"] = kept;
+            }
+            std::printf("case %d: %s%s%s\n", c.id, c.title.c_str(), c.note.empty() ? "" : "\n  (",
+                        c.note.empty() ? "" : (c.note + ")").c_str());
+            nlohmann::json jc = {{"id", c.id}, {"title", c.title}, {"note", c.note}};
+            if (!c.missing_data.empty()) {
+                std::printf("  SKIPPED: %s\n", c.missing_data.c_str());
+                jc["skipped"] = c.missing_data;
+            }
+            std::fflush(stdout);  // before the builds' progress lines on stderr
+            for (const BenchRun& run : c.runs) {
+                if (run.config["methods"].empty()) continue;  // filtered out by --methods
+                const RunFigures r = run_bench(run, cli.bench);
+                print_run(r);
+                jc["runs"].push_back(to_json(r));
+            }
+            std::fflush(stdout);
+            out["cases"].push_back(jc);
+        }
+        const double peak_mib = static_cast<double>(peak_rss_bytes()) / (1024.0 * 1024.0);
+        std::printf("peak memory (ru_maxrss): %.1f MiB\n", peak_mib);
+        out["peak_rss_mib"] = peak_mib;
+        if (!cli.json_file.empty()) {
+            std::ofstream f(cli.json_file);
+            f << out.dump(2) << "\n";
+            if (!f) throw InputError("bench: cannot write " + cli.json_file);
+        }
+        return 0;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench: error: %s\n", e.what());
+        return 3;
+    }
+}

@@ -1,0 +1,49 @@
+// Running one benchmark run: load the scene, build each method, trace the
+// workload with run_frame (the counting sinks simulate uses) on one thread and
+// on all threads, and collect the figures of issue 8.
+#pragma once
+
+#include "core/sinks.h"
+#include "sim/bench/bench_cases.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+struct BenchOptions {
+    unsigned threads = 0;  // the "all threads" figure; 0: all cores
+    int repeat = 3;        // timings: best of this many traces (the machine is shared)
+    bool single_thread = true;  // also time 1 thread (off for the scale case)
+};
+
+struct MethodFigures {
+    std::string method;
+    double build_seconds = 0.0;
+    std::uint64_t rays = 0;
+    double rays_per_second_1t = 0.0;  // best of `repeat`
+    double rays_per_second_nt = 0.0;
+    unsigned threads = 0;
+    double is_calls_per_ray = 0.0;
+    double box_tests_per_ray = 0.0;   // TLAS + BLAS
+    double bytes_per_primitive = 0.0; // TwoLevel (TLAS, instances, BLASes) / primitives
+    EventTotals totals;
+    bool counts_match = true;         // 1-thread and n-thread totals identical
+};
+
+struct RunFigures {
+    std::string label;
+    std::string kind;
+    std::uint64_t primitives = 0;
+    std::uint64_t triangles = 0;
+    double load_seconds = 0.0;
+    std::vector<MethodFigures> methods;
+};
+
+[[nodiscard]] RunFigures run_bench(const BenchRun& run, const BenchOptions& options);
+
+// Peak resident set of the process so far (getrusage ru_maxrss), bytes.
+[[nodiscard]] std::uint64_t peak_rss_bytes();
+
+}  // namespace rtc

@@ -1,0 +1,113 @@
+#include "sim/config/run_config.h"
+
+#include "sim/util/json_reader.h"
+
+#include <filesystem>
+
+namespace rtc {
+
+std::string resolve_config_path(const std::string& path, const std::string& file) {
+    namespace fs = std::filesystem;
+    if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
+    const fs::path beside = fs::path(file).parent_path() / path;
+    return fs::exists(beside) ? beside.string() : path;
+}
+
+namespace {
+
+BuildOptions read_build(const JsonReader& r, BuildOptions o) {
+    o.width = static_cast<int>(r.integer("width", o.width, 2, 8));
+    if (o.width != 2 && o.width != 4 && o.width != 8)
+        r.fail("width", "expected 2, 4 or 8, got " + std::to_string(o.width));
+    o.bins = static_cast<int>(r.integer("bins", o.bins, 2, 64));
+    return o;
+}
+
+}  // namespace
+
+RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
+    const JsonReader r(config, file);
+    r.allow_only({"name", "description", "scene", "primitives", "methods", "bvh", "traversal",
+                  "cost", "memory", "workload", "output", "calibrate"});
+    RunConfig c;
+    c.file = file;
+    c.name = r.string("name", std::filesystem::path(file).stem().string());
+    c.description = r.string("description", "");
+    if (!r.has("scene")) r.fail("scene", "missing (every config names a scene)");
+    c.scene = config["scene"];
+
+    if (r.has("primitives")) {
+        const JsonReader p = r.child("primitives");
+        p.allow_only({"kind", "subdivision", "obb"});
+        c.kind = *kind_from_name(p.choice("kind", "capsule", {"cylinder", "capsule", "link", "phantom"}));
+        c.subdivision = static_cast<int>(p.integer("subdivision", 1, 1, 8));
+        if (c.subdivision != 1 && c.subdivision != 2 && c.subdivision != 4 && c.subdivision != 8)
+            p.fail("subdivision", "expected 1, 2, 4 or 8, got " + std::to_string(c.subdivision));
+        c.build.obb = *obb_variant_from_name(p.choice("obb", "paper", {"paper", "tight"}));
+    }
+    if (r.has("methods")) {
+        const nlohmann::json& m = config["methods"];
+        if (!m.is_array() || m.empty())
+            r.fail("methods", "expected a non-empty list such as [\"ref\", \"obb\"], got " + describe(m));
+        c.methods.clear();
+        for (std::size_t i = 0; i < m.size(); ++i) {
+            const auto method = m[i].is_string() ? method_from_name(m[i].get<std::string>())
+                                                 : std::nullopt;
+            if (!method)
+                r.fail("methods/" + std::to_string(i),
+                       "expected \"ref\" or \"obb\", got " + describe(m[i]));
+            c.methods.push_back(*method);
+        }
+    }
+    // Leaf sizes follow the hardware: one box per custom primitive and per
+    // instance; triangles may share leaves.
+    c.build.custom_blas.max_leaf_size = 1;
+    c.build.tlas.max_leaf_size = 1;
+    c.build.triangle_blas.max_leaf_size = 4;
+    if (r.has("bvh")) {
+        const JsonReader b = r.child("bvh");
+        b.allow_only({"width", "bins", "triangle_leaf_size"});
+        c.build.custom_blas = read_build(b, c.build.custom_blas);
+        c.build.tlas = read_build(b, c.build.tlas);
+        c.build.triangle_blas = read_build(b, c.build.triangle_blas);
+        c.build.triangle_blas.max_leaf_size =
+            static_cast<int>(b.integer("triangle_leaf_size", 4, 1, 16));
+    }
+    if (r.has("traversal")) {
+        const JsonReader t = r.child("traversal");
+        t.allow_only({"schedule", "phantom_early_out"});
+        c.trace.schedule = t.choice("schedule", "immediate", {"immediate", "deferred"}) == "deferred"
+                               ? IsSchedule::Deferred
+                               : IsSchedule::Immediate;
+        c.trace.phantom.early_out = t.boolean("phantom_early_out", true);
+    }
+    if (r.has("cost")) {
+        const nlohmann::json& cost = config["cost"];
+        c.cost_presets.clear();
+        if (cost.is_string()) {
+            c.cost_presets.push_back(cost.get<std::string>());
+        } else if (cost.is_array() && !cost.empty()) {
+            for (std::size_t i = 0; i < cost.size(); ++i) {
+                if (!cost[i].is_string())
+                    r.fail("cost/" + std::to_string(i), "expected a preset path, got " + describe(cost[i]));
+                c.cost_presets.push_back(cost[i].get<std::string>());
+            }
+        } else {
+            r.fail("cost", "expected a preset path or a list of them, got " + describe(cost));
+        }
+    }
+    for (auto& p : c.cost_presets) p = resolve_config_path(p, file);
+    c.memory_preset = resolve_config_path(r.string("memory", c.memory_preset), file);
+    if (r.has("workload")) c.workload = parse_workload(r.child("workload"));
+    if (r.has("output")) {
+        const JsonReader o = r.child("output");
+        o.allow_only({"images", "rays", "hits"});
+        c.output.images = o.boolean("images", true);
+        c.output.write_rays = o.boolean("rays", false);
+        c.output.write_hits = o.boolean("hits", false);
+    }
+    if (r.has("calibrate")) c.calibrate = config["calibrate"];
+    return c;
+}
+
+}  // namespace rtc

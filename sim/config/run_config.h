@@ -1,0 +1,47 @@
+// A `simulate` config, typed. Every field has its default here; parsing
+// (run_config.cpp) rejects unknown keys and bad values with the JSON path.
+// Key reference: configs/README.md.
+#pragma once
+
+#include "sim/methods/methods.h"
+#include "sim/methods/trace_ray.h"
+#include "sim/config/workload_config.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+struct OutputOptions {
+    bool images = true;       // render, heat maps, ratio map (PNG)
+    bool write_rays = false;  // rays.bin: every traced ray (32 B each)
+    bool write_hits = false;  // hits_<method>.bin: each method's hit per ray (12 B each)
+};
+
+struct RunConfig {
+    std::string file;                 // where the config came from (for messages)
+    std::string name;                 // default: the config file's stem
+    std::string description;
+    nlohmann::json scene;             // the `scene` block, read by load_scene
+    PrimitiveKind kind = PrimitiveKind::Capsule;
+    int subdivision = 1;              // phantom pre-subdivision: 1, 2, 4 or 8
+    std::vector<Method> methods{Method::Ref, Method::Obb};
+    MethodOptions build;              // widths, bins, leaf sizes, OBB variant
+    TraceOptions trace;               // IS schedule, phantom early-out
+    std::vector<std::string> cost_presets{"configs/hw/turing-guess.json"};  // first = primary
+    std::string memory_preset = "configs/hw/memory-optix7.json";
+    WorkloadDesc workload;
+    OutputOptions output;
+    nlohmann::json calibrate;         // optional `calibrate` block (null when absent)
+};
+
+// Parses one (sweep-expanded) config. Throws InputError "<file>: <path>: ...".
+[[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file);
+
+// Resolves a path from a config: as given if it exists relative to the
+// current directory, else relative to the config file's directory.
+[[nodiscard]] std::string resolve_config_path(const std::string& path, const std::string& file);
+
+}  // namespace rtc

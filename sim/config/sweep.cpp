@@ -1,0 +1,102 @@
+#include "sim/config/sweep.h"
+
+#include "core/input_error.h"
+#include "sim/util/json_reader.h"
+
+namespace rtc {
+
+namespace {
+
+std::vector<std::string> split_path(const std::string& dotted) {
+    std::vector<std::string> parts;
+    std::string cur;
+    for (const char c : dotted) {
+        if (c == '.' || c == '/') {
+            if (!cur.empty()) parts.push_back(cur);
+            cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    if (!cur.empty()) parts.push_back(cur);
+    return parts;
+}
+
+}  // namespace
+
+void set_by_path(nlohmann::json& config, const std::string& dotted_path,
+                 const nlohmann::json& value, bool merge) {
+    nlohmann::json* node = &config;
+    for (const std::string& part : split_path(dotted_path)) {
+        if (!node->is_object()) *node = nlohmann::json::object();
+        node = &(*node)[part];
+    }
+    if (merge && value.is_object() && node->is_object())
+        node->merge_patch(value);
+    else
+        *node = value;
+}
+
+void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError(origin + ": --set " + spec + ": expected key.path=value");
+    const std::string key = spec.substr(0, eq), text = spec.substr(eq + 1);
+    nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = text;  // a bare word is a string
+    set_by_path(config, key, value);
+}
+
+std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::string& file) {
+    nlohmann::json base = config;
+    if (!base.is_object() || !base.contains("sweep")) return {{base, nlohmann::json::object(), ""}};
+    const nlohmann::json sweep = base["sweep"];
+    base.erase("sweep");
+    const JsonReader r(sweep, file, "/sweep");
+    r.require_object();
+    std::vector<std::pair<std::string, nlohmann::json>> axes;
+    for (const auto& [key, values] : sweep.items()) {
+        if (!values.is_array() || values.empty())
+            r.fail(key, "expected a non-empty list of values, got " + describe(values));
+        axes.emplace_back(key, values);
+    }
+    std::vector<SweepPoint> points;
+    std::vector<std::size_t> index(axes.size(), 0);
+    for (;;) {
+        SweepPoint p{base, nlohmann::json::object(), ""};
+        const auto add_label = [&](const std::string& k, const nlohmann::json& v) {
+            p.label += (p.label.empty() ? "" : " ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
+        };
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+            const std::string& axis = axes[a].first;
+            const nlohmann::json& v = axes[a].second[index[a]];
+            set_by_path(p.config, axis, v, /*merge=*/true);
+            if (!v.is_object()) {
+                p.values[axis] = v;
+                add_label(axis, v);
+                continue;
+            }
+            // A paired axis: record each member; label it by its "name" if it
+            // has one (a whole scene block would swamp the label), else by its
+            // scalar members.
+            for (const auto& [k, x] : v.items()) p.values[axis + "." + k] = x;
+            if (v.contains("name") && v["name"].is_string()) {
+                add_label(axis, v["name"]);
+                continue;
+            }
+            for (const auto& [k, x] : v.items())
+                if (x.is_primitive()) add_label(axis + "." + k, x);
+        }
+        points.push_back(std::move(p));
+        std::size_t a = axes.size();
+        while (a > 0) {
+            --a;
+            if (++index[a] < axes[a].second.size()) break;
+            index[a] = 0;
+            if (a == 0) return points;
+        }
+        if (axes.empty()) return points;
+    }
+}
+
+}  // namespace rtc

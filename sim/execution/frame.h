@@ -1,0 +1,137 @@
+// Running a workload through one method: every ray of every pixel (or of a
+// ray file) traced on all cores, with per-ray event counts flushed into
+// per-pixel and per-tile totals. Tiles write only their own slots and are
+// merged in tile order, so counts, images and hit files are identical
+// whatever the number of threads.
+#pragma once
+
+#include "core/parallel.h"
+#include "sim/workload/camera.h"
+#include "sim/workload/path_tracer.h"
+#include "sim/util/progress.h"
+#include "sim/methods/trace_ray.h"
+
+#include <chrono>
+#include <span>
+#include <vector>
+
+namespace rtc {
+
+// A workload resolved against a scene: a camera with its path options, or an
+// explicit list of rays.
+struct RayWorkload {
+    bool from_camera = true;
+    Camera camera;
+    PathOptions path;
+    std::vector<Ray> rays;  // when !from_camera
+};
+
+struct FrameResult {
+    int width = 0, height = 0;            // 0 x 0 for ray lists
+    EventTotals totals;
+    std::vector<RayCounts> pixel_counts;  // per pixel, summed over samples and bounces
+    std::vector<Vec3> radiance;           // per pixel, mean over samples
+    std::vector<Ray> rays;                // every traced ray, when recorded
+    std::vector<TraceHit> hits;           // every traced ray's hit, when recorded
+    std::uint64_t rays_traced = 0;
+    double trace_seconds = 0.0;
+};
+
+struct FrameOptions {
+    unsigned threads = 0;       // 0: all cores
+    bool record_rays = false;
+    bool record_hits = false;
+    bool progress = true;
+    std::string label = "trace";
+};
+
+template <class Prim>
+FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
+                      std::span<const Triangle> triangles, const RayWorkload& frame,
+                      const TraceOptions& trace_options, const FrameOptions& fo) {
+    const auto start = std::chrono::steady_clock::now();
+    const unsigned threads = fo.threads ? fo.threads : hardware_threads();
+    FrameResult out;
+    // One tile per image row (or per 4096 rays of a ray list).
+    constexpr std::size_t kRaysPerTile = 4096;
+    const std::size_t tiles = frame.from_camera
+                                  ? static_cast<std::size_t>(frame.camera.height)
+                                  : (frame.rays.size() + kRaysPerTile - 1) / kRaysPerTile;
+    struct Tile {
+        EventTotals totals;
+        std::vector<Ray> rays;
+        std::vector<TraceHit> hits;
+        std::uint64_t rays_traced = 0;
+    };
+    std::vector<Tile> tile_out(tiles);
+    std::vector<TraceScratch> scratch(threads);
+    if (frame.from_camera) {
+        out.width = frame.camera.width;
+        out.height = frame.camera.height;
+        out.pixel_counts.resize(static_cast<std::size_t>(out.width) * out.height);
+        out.radiance.resize(out.pixel_counts.size());
+    }
+    const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
+    Progress progress(fo.label, tiles, fo.progress);
+
+    parallel_for(tiles, threads, [&](std::size_t tile, unsigned thread) {
+        Tile& t = tile_out[tile];
+        const auto trace = [&](const Ray& ray, RayCounts& into) {
+            CountingSink sink;
+            const TraceHit hit = trace_ray(method, prims, triangles, ray, sink, trace_options,
+                                           scratch[thread]);
+            into += sink.ray;
+            ++t.rays_traced;
+            if (fo.record_rays) t.rays.push_back(ray);
+            if (fo.record_hits) t.hits.push_back(hit);
+            return hit;
+        };
+        if (frame.from_camera) {
+            const auto py = static_cast<std::uint32_t>(tile);
+            for (std::uint32_t px = 0; px < static_cast<std::uint32_t>(out.width); ++px) {
+                const std::size_t pixel = static_cast<std::size_t>(py) * out.width + px;
+                RayCounts counts;
+                Vec3 sum{0.0f};
+                for (std::uint32_t s = 0; s < frame.path.spp; ++s)
+                    sum += trace_path(cam, px, py, s, frame.path,
+                                      [&](const Ray& ray, std::uint32_t) { return trace(ray, counts); })
+                               .radiance;
+                out.pixel_counts[pixel] = counts;
+                out.radiance[pixel] = sum / static_cast<float>(frame.path.spp);
+                t.totals.add(counts);
+            }
+        } else {
+            const std::size_t end = std::min(frame.rays.size(), (tile + 1) * kRaysPerTile);
+            for (std::size_t i = tile * kRaysPerTile; i < end; ++i) {
+                RayCounts counts;
+                trace(frame.rays[i], counts);
+                t.totals.add(counts);
+            }
+        }
+        progress.advance(1);
+    }, /*grain=*/1);  // one row per hand-out: rows through the scene cost far more than sky rows
+    progress.finish();
+    for (Tile& t : tile_out) {  // fixed order: tile 0, 1, 2, ...
+        out.totals += t.totals;
+        out.rays_traced += t.rays_traced;
+        out.rays.insert(out.rays.end(), t.rays.begin(), t.rays.end());
+        out.hits.insert(out.hits.end(), t.hits.begin(), t.hits.end());
+    }
+    out.trace_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+// The same for whatever primitive kind `geometry` holds (one dispatch per frame).
+inline FrameResult run_frame(const MethodAccel& method, const Geometry& geometry,
+                             const RayWorkload& frame, const TraceOptions& trace_options,
+                             const FrameOptions& options) {
+    return std::visit(
+        [&](const auto& prims) {
+            using Prim = typename std::decay_t<decltype(prims)>::value_type;
+            return run_frame<Prim>(method, prims, geometry.triangles, frame, trace_options, options);
+        },
+        geometry.prims);
+}
+
+}  // namespace rtc

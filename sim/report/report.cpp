@@ -1,0 +1,162 @@
+#include "sim/report/report.h"
+
+#include "sim/util/version.h"
+
+namespace rtc {
+
+namespace {
+
+nlohmann::ordered_json scene_stats_json(const SceneStats& s) {
+    nlohmann::ordered_json j;
+    j["strands"] = s.strands;
+    j["segments"] = s.segments;
+    j["points"] = s.points;
+    j["triangles"] = s.triangles;
+    if (!s.bounds.empty())
+        j["bounds"] = {{s.bounds.lo.x, s.bounds.lo.y, s.bounds.lo.z}, {s.bounds.hi.x, s.bounds.hi.y, s.bounds.hi.z}};
+    j["mean_segment_length"] = s.mean_segment_length;
+    j["mean_radius"] = s.mean_radius;
+    j["mean_length_over_radius"] = s.mean_length_over_radius;
+    return j;
+}
+
+nlohmann::ordered_json events_json(const EventTotals& totals, std::uint64_t rays) {
+    nlohmann::ordered_json j;
+    for (std::size_t i = 0; i < kEventCount; ++i) {
+        const double per_ray = rays ? static_cast<double>(totals.n[i]) / static_cast<double>(rays) : 0.0;
+        j[std::string(kEventNames[i])] = {{"total", totals.n[i]}, {"per_ray", per_ray}};
+    }
+    return j;
+}
+
+nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
+    nlohmann::ordered_json j;
+    j["runnable"] = m.runnable;
+    if (!m.runnable) {
+        j["reason"] = m.reason;
+        j["instances"] = m.instances;
+        return j;
+    }
+    const std::uint64_t rays = m.frame.rays_traced;
+    j["instances"] = m.instances;
+    j["rays"] = rays;
+    j["events"] = events_json(m.frame.totals, rays);
+    nlohmann::ordered_json cycles;
+    for (std::size_t p = 0; p < run.costs.size(); ++p) {
+        const PricedRun& pr = m.priced[p];
+        nlohmann::ordered_json breakdown;
+        for (std::size_t i = 0; i < kEventCount; ++i)
+            if (pr.by_event[i] > 0.0) breakdown[std::string(kEventNames[i])] = pr.by_event[i];
+        cycles[run.costs[p].name] = {
+            {"total", pr.total_cycles},
+            {"per_ray", rays ? pr.total_cycles / static_cast<double>(rays) : 0.0},
+            {"breakdown", breakdown}};
+    }
+    j["cycles"] = cycles;
+    const MemoryBreakdown& mem = m.memory;
+    j["memory_bytes"] = {{"tlas_nodes", mem.tlas_nodes},     {"blas_nodes", mem.blas_nodes},
+                         {"instances", mem.instances},       {"custom_prims", mem.custom_prims},
+                         {"triangles", mem.triangles},       {"acceleration", mem.acceleration()},
+                         {"common", mem.common},             {"total", mem.total()}};
+    j["structures"] = {{"width", m.structures.width},
+                       {"tlas_nodes", m.structures.tlas_nodes},
+                       {"blas_nodes", m.structures.blas_nodes},
+                       {"instances", m.structures.instances},
+                       {"custom_prims", m.structures.custom_prims},
+                       {"triangles", m.structures.triangles}};
+    j["simulator"] = {{"build_seconds", m.build_seconds},
+                      {"trace_seconds", m.frame.trace_seconds},
+                      {"rays_per_second", m.frame.trace_seconds > 0
+                                              ? static_cast<double>(rays) / m.frame.trace_seconds
+                                              : 0.0},
+                      {"structure_bytes", m.simulator_bytes}};
+    return j;
+}
+
+}  // namespace
+
+nlohmann::ordered_json report_json(const RunResult& run) {
+    nlohmann::ordered_json j;
+    j["rtcsim_version"] = kVersion;
+    j["name"] = run.config.name;
+    if (!run.sweep_label.empty()) j["sweep_point"] = run.sweep_values;
+    j["config"] = run.effective_config;
+    const SceneStats& s = run.scene;
+    j["scene"] = scene_stats_json(s);
+    j["scene"]["primitive_kind"] = std::string(kind_name(run.config.kind));
+    j["scene"]["primitives"] = run.primitives;
+    j["scene"]["surface_area"] = {{"aabb", run.areas.aabb},
+                                  {"obb_paper", run.areas.obb_paper},
+                                  {"obb_tight", run.areas.obb_tight},
+                                  {"aabb_over_obb_paper", run.areas.ratio_paper()},
+                                  {"aabb_over_obb_tight", run.areas.ratio_tight()}};
+    if (run.config.workload.type != WorkloadType::Rays) {
+        const Camera& c = run.camera;  // resolved: what "auto" framing chose
+        j["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
+                       {"target", {c.target.x, c.target.y, c.target.z}},
+                       {"up", {c.up.x, c.up.y, c.up.z}},
+                       {"fov_deg", c.fov_deg},
+                       {"width", c.width},
+                       {"height", c.height}};
+    }
+    j["cost_presets"] = nlohmann::ordered_json::array();
+    for (const CostModel& c : run.costs) j["cost_presets"].push_back(c.name);
+    j["memory_preset"] = run.memory.name;
+    nlohmann::ordered_json methods;
+    for (const MethodRun& m : run.methods) methods[std::string(method_name(m.method))] = method_json(m, run);
+    j["methods"] = methods;
+    nlohmann::ordered_json speedups = nlohmann::ordered_json::object(), overhead = nlohmann::ordered_json::object();
+    const MethodRun* ref = run.find(Method::Ref);
+    for (const MethodRun& m : run.methods) {
+        if (m.method == Method::Ref) continue;
+        const std::string name(method_name(m.method));
+        nlohmann::ordered_json per_preset;
+        for (std::size_t p = 0; p < run.costs.size(); ++p) {
+            const double s = run.speedup(m.method, p);
+            per_preset[run.costs[p].name] = s > 0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json();
+        }
+        speedups[name] = per_preset;
+        if (ref && ref->runnable && m.runnable)
+            overhead[name] = 100.0 * (m.memory.total() - ref->memory.total()) / ref->memory.total();
+    }
+    j["speedup_over_ref"] = speedups;
+    j["memory_overhead_percent"] = overhead;
+    j["wall_seconds"] = {{"load_scene", run.load_seconds},
+                         {"convert", run.convert_seconds},
+                         {"total", run.total_seconds}};
+    return j;
+}
+
+Table summary_table(const std::vector<RunResult>& runs) {
+    Table t({"run", "kind", "prims", "rays", "ref cyc/ray", "obb cyc/ray", "ref IS/ray",
+             "obb IS/ray", "speedup", "AABB/OBB area", "obb mem overhead"});
+    for (const RunResult& r : runs) {
+        const MethodRun* ref = r.find(Method::Ref);
+        const MethodRun* obb = r.find(Method::Obb);
+        const auto per_ray = [](const MethodRun* m, double v) -> std::string {
+            if (!m) return "-";
+            if (!m->runnable) return "n/a";
+            return m->frame.rays_traced ? format_sig(v / static_cast<double>(m->frame.rays_traced), 4) : "-";
+        };
+        const auto cycles = [&](const MethodRun* m) {
+            return per_ray(m, m && m->runnable && !m->priced.empty() ? m->priced[0].total_cycles : 0.0);
+        };
+        const auto is_calls = [&](const MethodRun* m) {
+            return per_ray(m, m && m->runnable ? static_cast<double>(m->frame.totals[Event::IsCall]) : 0.0);
+        };
+        const MethodRun* any = ref && ref->runnable ? ref : obb;
+        const double s = r.speedup(Method::Obb);
+        std::string overhead = "-";
+        if (ref && obb && ref->runnable && obb->runnable)
+            overhead = format_sig(100.0 * (obb->memory.total() - ref->memory.total()) / ref->memory.total(), 3) + "%";
+        t.add_row({r.sweep_label.empty() ? r.config.name : r.sweep_label,
+                   std::string(kind_name(r.config.kind)),
+                   format_thousands(static_cast<std::int64_t>(r.primitives)),
+                   any && any->runnable ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-",
+                   cycles(ref), cycles(obb), is_calls(ref), is_calls(obb),
+                   s > 0 ? format_speedup(s) : "n/a", format_sig(r.areas.ratio_paper(), 3), overhead});
+    }
+    return t;
+}
+
+}  // namespace rtc

@@ -1,0 +1,32 @@
+// What a run tells its reader: report.json (everything), one summary row per
+// run / sweep point (summary.csv, summary.md, the terminal table), heat maps
+// and the render (PNG), and plots over a sweep's numeric axes (SVG).
+#pragma once
+
+#include "sim/run/simulation.h"
+#include "sim/util/table.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+[[nodiscard]] nlohmann::ordered_json report_json(const RunResult& run);
+
+// Summary table over runs (one row each): the columns shared by the CSV, the
+// Markdown file and the terminal table.
+[[nodiscard]] Table summary_table(const std::vector<RunResult>& runs);
+
+// Render, per-method heat maps of cycles and IS calls per pixel on common
+// scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
+void write_images(const RunResult& run, const std::string& dir);
+
+// For each numeric sweep axis: speedup of every non-ref method against it, one
+// line per value of the other axes (e.g. speedup vs tilt, one line per N).
+// Returns the files written.
+std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs,
+                                           const std::string& dir);
+
+}  // namespace rtc

@@ -1,0 +1,134 @@
+// The pictures of a run: the shaded render, heat maps of cycles and of
+// intersection-program calls per pixel for each method on one common scale
+// (the paper's figures 1 and 4), the ref/obb ratio map, and sweep plots.
+#include "sim/plot/heatmap.h"
+#include "sim/plot/plot_svg.h"
+#include "sim/report/report.h"
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+namespace rtc {
+
+namespace {
+
+ScalarField pixel_field(const FrameResult& f, const auto& value_of) {
+    ScalarField field{f.width, f.height, {}};
+    field.values.resize(f.pixel_counts.size());
+    for (std::size_t i = 0; i < f.pixel_counts.size(); ++i) field.values[i] = value_of(f.pixel_counts[i]);
+    return field;
+}
+
+std::string path_in(const std::string& dir, const std::string& file) {
+    return (std::filesystem::path(dir) / file).string();
+}
+
+}  // namespace
+
+void write_images(const RunResult& run, const std::string& dir) {
+    std::vector<const MethodRun*> traced;
+    for (const MethodRun& m : run.methods)
+        if (m.runnable && m.frame.width > 0) traced.push_back(&m);
+    if (traced.empty()) return;
+    const FrameResult& first = traced.front()->frame;
+    write_png(tonemap_to_srgb(first.radiance, first.width, first.height), path_in(dir, "render.png"));
+
+    const CostModel& cost = run.costs.front();
+    std::vector<ScalarField> cycles, calls;
+    for (const MethodRun* m : traced) {
+        cycles.push_back(pixel_field(m->frame, [&](const RayCounts& c) {
+            return static_cast<float>(price_cycles(c, cost));
+        }));
+        calls.push_back(pixel_field(m->frame, [](const RayCounts& c) {
+            return static_cast<float>(c[Event::IsCall]);
+        }));
+    }
+    const auto pointers = [](const std::vector<ScalarField>& v) {
+        std::vector<const ScalarField*> p;
+        for (const auto& f : v) p.push_back(&f);
+        return p;
+    };
+    const HeatmapScale cycle_scale = common_scale(pointers(cycles));
+    const HeatmapScale call_scale = common_scale(pointers(calls));
+    const std::string spp = std::to_string(run.config.workload.spp) + " samples/pixel";
+    for (std::size_t i = 0; i < traced.size(); ++i) {
+        const std::string name(method_name(traced[i]->method));
+        HeatmapOptions o;
+        o.title = name + ": cycles per pixel (" + cost.name + ")";
+        o.bar_label = "cycles / pixel";
+        o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
+                    "\n" + spp + ", common scale across methods";
+        o.colormap = Colormap::Inferno;
+        write_png(render_heatmap(cycles[i], cycle_scale, o).image, path_in(dir, "heat_cycles_" + name + ".png"));
+        o.title = name + ": intersection-program calls per pixel";
+        o.bar_label = "IS calls / pixel";
+        o.colormap = Colormap::Viridis;
+        write_png(render_heatmap(calls[i], call_scale, o).image, path_in(dir, "heat_is_calls_" + name + ".png"));
+    }
+    const MethodRun* ref = run.find(Method::Ref);
+    for (std::size_t i = 0; i < traced.size(); ++i) {
+        if (!ref || traced[i]->method == Method::Ref || !ref->runnable || ref->frame.width == 0) continue;
+        const std::string name(method_name(traced[i]->method));
+        const std::size_t ref_index = static_cast<std::size_t>(std::find(traced.begin(), traced.end(), ref) - traced.begin());
+        RatioMapOptions o;
+        o.title = "cycles per pixel, ref / " + name;
+        o.ratio_label = "ref/" + name;
+        o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
+                    "\nred: " + name + " cheaper, blue: ref cheaper";
+        write_png(render_ratio_map(cycles[ref_index], cycles[i], o).image,
+                  path_in(dir, "ratio_cycles_ref_over_" + name + ".png"));
+    }
+}
+
+std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, const std::string& dir) {
+    std::vector<std::string> written;
+    if (runs.size() < 2) return written;
+    // Numeric sweep axes with more than one value.
+    std::map<std::string, std::set<double>> axes;
+    for (const RunResult& r : runs)
+        for (const auto& [k, v] : r.sweep_values.items())
+            if (v.is_number()) axes[k].insert(v.get<double>());
+    for (const auto& [axis, values] : axes) {
+        if (values.size() < 2) continue;
+        // One series per combination of the other sweep values.
+        std::map<std::string, PlotSeries> series;
+        for (const RunResult& r : runs) {
+            if (!r.sweep_values.contains(axis) || !r.sweep_values[axis].is_number()) continue;
+            const double s = r.speedup(Method::Obb);
+            std::string key;
+            for (const auto& [k, v] : r.sweep_values.items())
+                if (k != axis) key += (key.empty() ? "" : ", ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
+            PlotSeries& ps = series[key];
+            ps.name = key.empty() ? "obb" : key;
+            ps.x.push_back(r.sweep_values[axis].get<double>());
+            ps.y.push_back(s > 0 ? s : std::numeric_limits<double>::quiet_NaN());
+        }
+        LinePlot plot;
+        plot.axes.title = "speedup of obb over ref vs " + axis;
+        plot.axes.x_label = axis;
+        plot.axes.y_label = "speedup (ref cycles / obb cycles)";
+        for (auto& [k, s] : series) plot.series.push_back(std::move(s));
+        std::string file = "speedup_vs_" + axis + ".svg";
+        for (char& ch : file) if (ch == '/' ) ch = '_';
+        write_text_file(path_in(dir, file), line_plot_svg(plot));
+        written.push_back(file);
+    }
+    // Speedup against the surface-area ratio over every run (figure 9's metric).
+    ScatterPlot scatter;
+    scatter.axes.title = "speedup vs AABB/OBB surface-area ratio";
+    scatter.axes.x_label = "sum AABB area / sum OBB area (paper OBBs)";
+    scatter.axes.y_label = "speedup of obb over ref";
+    for (const RunResult& r : runs) {
+        const double s = r.speedup(Method::Obb);
+        if (s > 0) scatter.points.push_back({r.areas.ratio_paper(), s, ""});
+    }
+    if (scatter.points.size() >= 2) {
+        scatter.guide = ScatterGuide::LeastSquares;
+        write_text_file(path_in(dir, "speedup_vs_area_ratio.svg"), scatter_plot_svg(scatter));
+        written.push_back("speedup_vs_area_ratio.svg");
+    }
+    return written;
+}
+
+}  // namespace rtc
