@@ -1,10 +1,28 @@
 #include "sim/app/cli.h"
 
 #include "core/input_error.h"
+#include "sim/methods/method.h"
+
+#include <algorithm>
 
 #include <charconv>
 
 namespace rtc {
+
+namespace {
+
+// The registered methods (sim/methods/registry.cpp), one line each.
+std::string methods_help() {
+    std::string s = "methods (config key \"methods\"; speedups are against \"baseline\", default ref):\n";
+    for (const MethodEntry& m : registered_methods()) {
+        std::string name = "  " + m.info.name;
+        name.resize(std::max<std::size_t>(name.size() + 1, 16), ' ');
+        s += name + m.info.summary + "\n";
+    }
+    return s;
+}
+
+}  // namespace
 
 std::string cli_help() {
     return R"(simulate - an RT-core simulator with a cost model (rtcsim)
@@ -30,7 +48,7 @@ options:
 
 configs: configs/runs/*.json, keys documented in configs/README.md
 outputs: report.json, summary.csv, summary.md, *.png heat maps, *.svg plots
-)";
+)" + methods_help();
 }
 
 CliOptions parse_cli(const std::vector<std::string>& args) {

@@ -55,8 +55,8 @@ void calibrate_runs(const std::vector<RunResult>& runs, const nlohmann::json& co
     for (const RunResult& r : runs) {
         const std::string label = r.sweep_label.empty() ? r.config.name : r.sweep_label;
         const CalibrationTarget* target = find_target(desc, r.sweep_values, label);
-        const MethodRun* ref = r.find(Method::Ref);
-        const MethodRun* obb = r.find(Method::Obb);
+        const MethodRun* ref = r.baseline();
+        const MethodRun* obb = r.find(desc.method);
         if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
             skipped.push_back(label);
             continue;

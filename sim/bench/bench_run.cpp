@@ -21,20 +21,20 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-FrameResult trace_frame(const MethodAccel& accel, const Geometry& g, const RayWorkload& frame,
+FrameResult trace_frame(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
                         const TraceOptions& trace, unsigned threads) {
     FrameOptions fo;
     fo.threads = threads;
     fo.progress = false;
-    return run_frame(accel, g, frame, trace, fo);
+    return method.run(g, frame, trace, fo);
 }
 
 // Best rate of `repeat` traces; every trace must count the same events.
-double best_rate(const MethodAccel& accel, const Geometry& g, const RayWorkload& frame,
+double best_rate(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
                  const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m) {
     double best = 0.0;
     for (int i = 0; i < repeat; ++i) {
-        const FrameResult r = trace_frame(accel, g, frame, trace, threads);
+        const FrameResult r = trace_frame(method, g, frame, trace, threads);
         if (m.rays == 0) {
             m.rays = r.rays_traced;
             m.totals = r.totals;
@@ -75,20 +75,20 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     frame.path = path_options(c.workload);
     const unsigned threads = o.threads ? o.threads : hardware_threads();
 
-    for (const Method method : c.methods) {
+    for (const std::string& name : c.methods) {
         MethodFigures m;
-        m.method = std::string(method_name(method));
+        m.method = name;
         m.threads = threads;
         const auto t_build = std::chrono::steady_clock::now();
-        const MethodAccel accel = build_method(method, geometry, c.build);
+        const std::unique_ptr<BuiltMethod> built = find_method(name)->build(geometry, c.build);
         m.build_seconds = seconds_since(t_build);
-        m.bytes_per_primitive = static_cast<double>(accel.accel.memory_bytes()) /
+        m.bytes_per_primitive = static_cast<double>(built->simulator_bytes()) /
                                 static_cast<double>(std::max<std::uint64_t>(out.primitives, 1));
         std::fprintf(stderr, "  %s %s: built in %.2f s, tracing...\n", run.label.c_str(),
                      m.method.c_str(), m.build_seconds);
         if (o.single_thread)
-            m.rays_per_second_1t = best_rate(accel, geometry, frame, c.trace, 1, o.repeat, m);
-        m.rays_per_second_nt = best_rate(accel, geometry, frame, c.trace, threads, o.repeat, m);
+            m.rays_per_second_1t = best_rate(*built, geometry, frame, c.trace, 1, o.repeat, m);
+        m.rays_per_second_nt = best_rate(*built, geometry, frame, c.trace, threads, o.repeat, m);
         const double rays = static_cast<double>(std::max<std::uint64_t>(m.rays, 1));
         m.is_calls_per_ray = static_cast<double>(m.totals[Event::IsCall]) / rays;
         m.box_tests_per_ray =

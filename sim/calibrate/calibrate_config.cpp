@@ -101,7 +101,7 @@ namespace {
 
 CalibrateDesc parse_calibrate(const JsonReader& r) {
     r.allow_only({"parameters", "targets", "output", "name", "description", "reference",
-                  "max_iterations", "start"});
+                  "max_iterations", "start", "method"});
     CalibrateDesc d;
     std::vector<std::string> seen;
     const std::size_t np = array_of(r, "parameters", "parameters").size();
@@ -120,6 +120,7 @@ CalibrateDesc parse_calibrate(const JsonReader& r) {
     d.description = r.string("description", "");
     d.reference = r.string("reference", d.reference);
     d.start = r.string("start", "");
+    d.method = r.string("method", d.method);
     d.max_iterations = static_cast<int>(r.integer("max_iterations", d.max_iterations, 1, 100000));
     return d;
 }

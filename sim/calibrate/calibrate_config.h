@@ -35,6 +35,7 @@ struct CalibrateDesc {
     std::string description;  // empty: keep the start preset's
     std::string reference = "target speedups";  // what the targets are, for provenance
     std::string start;  // preset the fit starts from; empty: the run's first cost preset
+    std::string method = "obb";  // whose speedup over the run's baseline the targets give
     int max_iterations = 200;
 };
 

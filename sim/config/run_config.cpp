@@ -2,6 +2,7 @@
 
 #include "sim/util/json_reader.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace rtc {
@@ -27,7 +28,7 @@ BuildOptions read_build(const JsonReader& r, BuildOptions o) {
 
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
     const JsonReader r(config, file);
-    r.allow_only({"name", "description", "scene", "primitives", "methods", "bvh", "traversal",
+    r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
                   "cost", "memory", "workload", "output", "calibrate"});
     RunConfig c;
     c.file = file;
@@ -51,14 +52,19 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
             r.fail("methods", "expected a non-empty list such as [\"ref\", \"obb\"], got " + describe(m));
         c.methods.clear();
         for (std::size_t i = 0; i < m.size(); ++i) {
-            const auto method = m[i].is_string() ? method_from_name(m[i].get<std::string>())
-                                                 : std::nullopt;
-            if (!method)
-                r.fail("methods/" + std::to_string(i),
-                       "expected \"ref\" or \"obb\", got " + describe(m[i]));
-            c.methods.push_back(*method);
+            const std::string key = "methods/" + std::to_string(i);
+            if (!m[i].is_string() || !find_method(m[i].get<std::string>()))
+                r.fail(key, "expected one of " + method_names_list() + ", got " + describe(m[i]));
+            const std::string name = m[i].get<std::string>();
+            if (std::find(c.methods.begin(), c.methods.end(), name) != c.methods.end())
+                r.fail(key, "\"" + name + "\" is listed twice");
+            c.methods.push_back(name);
         }
     }
+    c.baseline = r.string("baseline", "ref");
+    if (r.has("baseline") &&
+        std::find(c.methods.begin(), c.methods.end(), c.baseline) == c.methods.end())
+        r.fail("baseline", "\"" + c.baseline + "\" is not one of the run's methods");
     // Leaf sizes follow the hardware: one box per custom primitive and per
     // instance; triangles may share leaves.
     c.build.custom_blas.max_leaf_size = 1;

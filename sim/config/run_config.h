@@ -3,8 +3,7 @@
 // Key reference: configs/README.md.
 #pragma once
 
-#include "sim/methods/methods.h"
-#include "sim/methods/trace_ray.h"
+#include "sim/methods/method.h"
 #include "sim/config/workload_config.h"
 
 #include <nlohmann/json.hpp>
@@ -27,7 +26,8 @@ struct RunConfig {
     nlohmann::json scene;             // the `scene` block, read by load_scene
     PrimitiveKind kind = PrimitiveKind::Capsule;
     int subdivision = 1;              // phantom pre-subdivision: 1, 2, 4 or 8
-    std::vector<Method> methods{Method::Ref, Method::Obb};
+    std::vector<std::string> methods{"ref", "obb"};  // registered names (sim/methods/registry.cpp)
+    std::string baseline = "ref";     // speedups, ratio maps and memory overheads are against it
     MethodOptions build;              // widths, bins, leaf sizes, OBB variant
     TraceOptions trace;               // IS schedule, phantom early-out
     std::vector<std::string> cost_presets{"configs/hw/turing-guess.json"};  // first = primary

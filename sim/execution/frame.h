@@ -1,5 +1,5 @@
-// Running a workload through one method: every ray of every pixel (or of a
-// ray file) traced on all cores, with per-ray event counts flushed into
+// Running a workload through a tracer (one method's compiled ray path): every
+// ray of every pixel (or of a ray file) traced on all cores, with per-ray event counts flushed into
 // per-pixel and per-tile totals. Tiles write only their own slots and are
 // merged in tile order, so counts, images and hit files are identical
 // whatever the number of threads.
@@ -9,7 +9,7 @@
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
 #include "sim/util/progress.h"
-#include "sim/methods/trace_ray.h"
+#include "sim/hardware/leaf_programs.h"
 
 #include <chrono>
 #include <span>
@@ -45,10 +45,11 @@ struct FrameOptions {
     std::string label = "trace";
 };
 
-template <class Prim>
-FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
-                      std::span<const Triangle> triangles, const RayWorkload& frame,
-                      const TraceOptions& trace_options, const FrameOptions& fo) {
+// `tracer(const Ray&, CountingSink&, TraceScratch&) -> TraceHit` traces one
+// ray; it is a method's template instantiation, called directly (no virtual
+// call per ray).
+template <class Tracer>
+FrameResult run_frame(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
     const auto start = std::chrono::steady_clock::now();
     const unsigned threads = fo.threads ? fo.threads : hardware_threads();
     FrameResult out;
@@ -78,8 +79,7 @@ FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
         Tile& t = tile_out[tile];
         const auto trace = [&](const Ray& ray, RayCounts& into) {
             CountingSink sink;
-            const TraceHit hit = trace_ray(method, prims, triangles, ray, sink, trace_options,
-                                           scratch[thread]);
+            const TraceHit hit = tracer(ray, sink, scratch[thread]);
             into += sink.ray;
             ++t.rays_traced;
             if (fo.record_rays) t.rays.push_back(ray);
@@ -120,18 +120,6 @@ FrameResult run_frame(const MethodAccel& method, std::span<const Prim> prims,
     out.trace_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
-}
-
-// The same for whatever primitive kind `geometry` holds (one dispatch per frame).
-inline FrameResult run_frame(const MethodAccel& method, const Geometry& geometry,
-                             const RayWorkload& frame, const TraceOptions& trace_options,
-                             const FrameOptions& options) {
-    return std::visit(
-        [&](const auto& prims) {
-            using Prim = typename std::decay_t<decltype(prims)>::value_type;
-            return run_frame<Prim>(method, prims, geometry.triangles, frame, trace_options, options);
-        },
-        geometry.prims);
 }
 
 }  // namespace rtc

@@ -6,6 +6,18 @@
 
 namespace rtc {
 
+bool CostModel::has_feature(std::string_view f) const {
+    for (const std::string& x : features)
+        if (x == f) return true;
+    return false;
+}
+
+std::string CostModel::missing_feature(const std::vector<std::string>& needs) const {
+    for (const std::string& n : needs)
+        if (!has_feature(n)) return n;
+    return {};
+}
+
 PricedRun price(const EventTotals& counts, const CostModel& model) {
     PricedRun out;
     for (std::size_t i = 0; i < kEventCount; ++i) {
@@ -25,10 +37,20 @@ double price_cycles(const RayCounts& counts, const CostModel& model) {
 CostModel parse_cost_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "cycles"});
+    r.allow_only({"name", "description", "features", "cycles"});
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
+    if (r.has("features")) {
+        const nlohmann::json& f = j["features"];
+        if (!f.is_array()) r.fail("features", "expected a list of hardware feature names");
+        m.features.clear();
+        for (std::size_t i = 0; i < f.size(); ++i) {
+            if (!f[i].is_string() || f[i].get<std::string>().empty())
+                r.fail("features/" + std::to_string(i), "expected a feature name, got " + describe(f[i]));
+            m.features.push_back(f[i].get<std::string>());
+        }
+    }
     const JsonReader cycles = r.child("cycles");
     for (const auto& [key, value] : cycles.json().items())
         if (!event_from_name(key)) cycles.fail(key, "unknown event (see core/events.h)");
@@ -51,6 +73,7 @@ std::string cost_model_to_json(const CostModel& m) {
     nlohmann::ordered_json j;
     j["name"] = m.name;
     j["description"] = m.description;
+    j["features"] = m.features;
     nlohmann::ordered_json cycles;
     for (std::size_t i = 0; i < kEventCount; ++i)
         cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace rtc {
 
@@ -15,12 +17,21 @@ struct CostModel {
     std::string description;
     std::array<double, kEventCount> cycles{};   // cost per event
     std::array<std::string, kEventCount> source{};  // provenance of each number
+    // Hardware features the preset's machine has; a method needing one it
+    // lacks is priced n/a. Default: what Turing-class RT hardware has.
+    std::vector<std::string> features{"custom_primitives", "instance_transforms"};
+
+    [[nodiscard]] bool has_feature(std::string_view f) const;
+    // The first of `needs` this preset lacks, or empty.
+    [[nodiscard]] std::string missing_feature(const std::vector<std::string>& needs) const;
 
     [[nodiscard]] double& operator[](Event e) { return cycles[static_cast<std::size_t>(e)]; }
     [[nodiscard]] double operator[](Event e) const { return cycles[static_cast<std::size_t>(e)]; }
 };
 
 struct PricedRun {
+    bool supported = true;   // false: the preset's hardware lacks a feature the method needs
+    std::string missing_feature;
     double total_cycles = 0.0;
     std::array<double, kEventCount> by_event{};  // cycles spent on each event
 };

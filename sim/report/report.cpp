@@ -2,6 +2,9 @@
 
 #include "sim/util/version.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace rtc {
 
 namespace {
@@ -44,6 +47,10 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
     nlohmann::ordered_json cycles;
     for (std::size_t p = 0; p < run.costs.size(); ++p) {
         const PricedRun& pr = m.priced[p];
+        if (!pr.supported) {
+            cycles[run.costs[p].name] = {{"n/a", "the preset's hardware has no " + pr.missing_feature}};
+            continue;
+        }
         nlohmann::ordered_json breakdown;
         for (std::size_t i = 0; i < kEventCount; ++i)
             if (pr.by_event[i] > 0.0) breakdown[std::string(kEventNames[i])] = pr.by_event[i];
@@ -103,23 +110,21 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     for (const CostModel& c : run.costs) j["cost_presets"].push_back(c.name);
     j["memory_preset"] = run.memory.name;
     nlohmann::ordered_json methods;
-    for (const MethodRun& m : run.methods) methods[std::string(method_name(m.method))] = method_json(m, run);
+    for (const MethodRun& m : run.methods) methods[m.method] = method_json(m, run);
     j["methods"] = methods;
     nlohmann::ordered_json speedups = nlohmann::ordered_json::object(), overhead = nlohmann::ordered_json::object();
-    const MethodRun* ref = run.find(Method::Ref);
     for (const MethodRun& m : run.methods) {
-        if (m.method == Method::Ref) continue;
-        const std::string name(method_name(m.method));
+        if (m.method == run.config.baseline) continue;
         nlohmann::ordered_json per_preset;
         for (std::size_t p = 0; p < run.costs.size(); ++p) {
             const double s = run.speedup(m.method, p);
             per_preset[run.costs[p].name] = s > 0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json();
         }
-        speedups[name] = per_preset;
-        if (ref && ref->runnable && m.runnable)
-            overhead[name] = 100.0 * (m.memory.total() - ref->memory.total()) / ref->memory.total();
+        speedups[m.method] = per_preset;
+        const double o = run.memory_overhead_percent(m.method);
+        if (!std::isnan(o)) overhead[m.method] = o;
     }
-    j["speedup_over_ref"] = speedups;
+    j["speedup_over_" + run.config.baseline] = speedups;
     j["memory_overhead_percent"] = overhead;
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
@@ -127,34 +132,56 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     return j;
 }
 
+// One row per run; per method its cycles and IS calls per ray (primary cost
+// preset), per non-baseline method its speedup and memory overhead.
 Table summary_table(const std::vector<RunResult>& runs) {
-    Table t({"run", "kind", "prims", "rays", "ref cyc/ray", "obb cyc/ray", "ref IS/ray",
-             "obb IS/ray", "speedup", "AABB/OBB area", "obb mem overhead"});
+    std::vector<std::string> names;  // every method of any run, in first-seen order
+    for (const RunResult& r : runs)
+        for (const MethodRun& m : r.methods)
+            if (std::find(names.begin(), names.end(), m.method) == names.end()) names.push_back(m.method);
+    const std::string baseline = runs.empty() ? "ref" : runs.front().config.baseline;
+    std::vector<std::string> others;
+    for (const std::string& n : names)
+        if (n != baseline) others.push_back(n);
+    std::vector<std::string> header{"run", "kind", "prims", "rays"};
+    for (const std::string& n : names) header.push_back(n + " cyc/ray");
+    for (const std::string& n : names) header.push_back(n + " IS/ray");
+    for (const std::string& n : others) header.push_back(n + " speedup");
+    header.push_back("AABB/OBB area");
+    for (const std::string& n : others) header.push_back(n + " mem overhead");
+    Table t(header);
     for (const RunResult& r : runs) {
-        const MethodRun* ref = r.find(Method::Ref);
-        const MethodRun* obb = r.find(Method::Obb);
         const auto per_ray = [](const MethodRun* m, double v) -> std::string {
             if (!m) return "-";
             if (!m->runnable) return "n/a";
             return m->frame.rays_traced ? format_sig(v / static_cast<double>(m->frame.rays_traced), 4) : "-";
         };
-        const auto cycles = [&](const MethodRun* m) {
-            return per_ray(m, m && m->runnable && !m->priced.empty() ? m->priced[0].total_cycles : 0.0);
-        };
-        const auto is_calls = [&](const MethodRun* m) {
-            return per_ray(m, m && m->runnable ? static_cast<double>(m->frame.totals[Event::IsCall]) : 0.0);
-        };
-        const MethodRun* any = ref && ref->runnable ? ref : obb;
-        const double s = r.speedup(Method::Obb);
-        std::string overhead = "-";
-        if (ref && obb && ref->runnable && obb->runnable)
-            overhead = format_sig(100.0 * (obb->memory.total() - ref->memory.total()) / ref->memory.total(), 3) + "%";
-        t.add_row({r.sweep_label.empty() ? r.config.name : r.sweep_label,
-                   std::string(kind_name(r.config.kind)),
-                   format_thousands(static_cast<std::int64_t>(r.primitives)),
-                   any && any->runnable ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-",
-                   cycles(ref), cycles(obb), is_calls(ref), is_calls(obb),
-                   s > 0 ? format_speedup(s) : "n/a", format_sig(r.areas.ratio_paper(), 3), overhead});
+        const MethodRun* any = nullptr;
+        for (const MethodRun& m : r.methods)
+            if (!any && m.runnable) any = &m;
+        std::vector<std::string> row{r.sweep_label.empty() ? r.config.name : r.sweep_label,
+                                     std::string(kind_name(r.config.kind)),
+                                     format_thousands(static_cast<std::int64_t>(r.primitives)),
+                                     any ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-"};
+        for (const std::string& n : names) {
+            const MethodRun* m = r.find(n);
+            const bool priced = m && m->runnable && !m->priced.empty() && m->priced[0].supported;
+            row.push_back(m && m->runnable && !priced ? "n/a" : per_ray(m, priced ? m->priced[0].total_cycles : 0.0));
+        }
+        for (const std::string& n : names) {
+            const MethodRun* m = r.find(n);
+            row.push_back(per_ray(m, m && m->runnable ? static_cast<double>(m->frame.totals[Event::IsCall]) : 0.0));
+        }
+        for (const std::string& n : others) {
+            const double s = r.speedup(n);
+            row.push_back(s > 0 ? format_speedup(s) : "n/a");
+        }
+        row.push_back(format_sig(r.areas.ratio_paper(), 3));
+        for (const std::string& n : others) {
+            const double o = r.memory_overhead_percent(n);
+            row.push_back(std::isnan(o) ? "-" : format_sig(o, 3) + "%");
+        }
+        t.add_row(row);
     }
     return t;
 }

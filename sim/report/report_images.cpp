@@ -5,7 +5,9 @@
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -53,7 +55,7 @@ void write_images(const RunResult& run, const std::string& dir) {
     const HeatmapScale call_scale = common_scale(pointers(calls));
     const std::string spp = std::to_string(run.config.workload.spp) + " samples/pixel";
     for (std::size_t i = 0; i < traced.size(); ++i) {
-        const std::string name(method_name(traced[i]->method));
+        const std::string& name = traced[i]->method;
         HeatmapOptions o;
         o.title = name + ": cycles per pixel (" + cost.name + ")";
         o.bar_label = "cycles / pixel";
@@ -66,18 +68,20 @@ void write_images(const RunResult& run, const std::string& dir) {
         o.colormap = Colormap::Viridis;
         write_png(render_heatmap(calls[i], call_scale, o).image, path_in(dir, "heat_is_calls_" + name + ".png"));
     }
-    const MethodRun* ref = run.find(Method::Ref);
+    // One ratio map per method against the baseline.
+    const MethodRun* base = run.baseline();
+    const std::string& bname = run.config.baseline;
+    const auto base_at = std::find(traced.begin(), traced.end(), base);
     for (std::size_t i = 0; i < traced.size(); ++i) {
-        if (!ref || traced[i]->method == Method::Ref || !ref->runnable || ref->frame.width == 0) continue;
-        const std::string name(method_name(traced[i]->method));
-        const std::size_t ref_index = static_cast<std::size_t>(std::find(traced.begin(), traced.end(), ref) - traced.begin());
+        if (base_at == traced.end() || traced[i] == base) continue;
+        const std::string& name = traced[i]->method;
         RatioMapOptions o;
-        o.title = "cycles per pixel, ref / " + name;
-        o.ratio_label = "ref/" + name;
+        o.title = "cycles per pixel, " + bname + " / " + name;
+        o.ratio_label = bname + "/" + name;
         o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
-                    "\nred: " + name + " cheaper, blue: ref cheaper";
-        write_png(render_ratio_map(cycles[ref_index], cycles[i], o).image,
-                  path_in(dir, "ratio_cycles_ref_over_" + name + ".png"));
+                    "\nred: " + name + " cheaper, blue: " + bname + " cheaper";
+        write_png(render_ratio_map(cycles[static_cast<std::size_t>(base_at - traced.begin())], cycles[i], o).image,
+                  path_in(dir, "ratio_cycles_" + bname + "_over_" + name + ".png"));
     }
 }
 
@@ -89,25 +93,36 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
     for (const RunResult& r : runs)
         for (const auto& [k, v] : r.sweep_values.items())
             if (v.is_number()) axes[k].insert(v.get<double>());
+    const std::string& bname = runs.front().config.baseline;
+    std::vector<std::string> others;  // every non-baseline method, first-seen order
+    for (const RunResult& r : runs)
+        for (const MethodRun& m : r.methods)
+            if (m.method != bname && std::find(others.begin(), others.end(), m.method) == others.end())
+                others.push_back(m.method);
+    const bool one = others.size() == 1;
+    const std::string who = one ? others.front() : "each method";
     for (const auto& [axis, values] : axes) {
         if (values.size() < 2) continue;
-        // One series per combination of the other sweep values.
+        // One series per method and combination of the other sweep values.
         std::map<std::string, PlotSeries> series;
-        for (const RunResult& r : runs) {
-            if (!r.sweep_values.contains(axis) || !r.sweep_values[axis].is_number()) continue;
-            const double s = r.speedup(Method::Obb);
-            std::string key;
-            for (const auto& [k, v] : r.sweep_values.items())
-                if (k != axis) key += (key.empty() ? "" : ", ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
-            PlotSeries& ps = series[key];
-            ps.name = key.empty() ? "obb" : key;
-            ps.x.push_back(r.sweep_values[axis].get<double>());
-            ps.y.push_back(s > 0 ? s : std::numeric_limits<double>::quiet_NaN());
+        for (const std::string& method : others) {
+            for (const RunResult& r : runs) {
+                if (!r.sweep_values.contains(axis) || !r.sweep_values[axis].is_number()) continue;
+                const double s = r.speedup(method);
+                std::string key = one ? "" : method;
+                for (const auto& [k, v] : r.sweep_values.items())
+                    if (k != axis) key += (key.empty() ? "" : ", ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
+                PlotSeries& ps = series[key];
+                ps.name = key.empty() ? method : key;
+                ps.x.push_back(r.sweep_values[axis].get<double>());
+                ps.y.push_back(s > 0 ? s : std::numeric_limits<double>::quiet_NaN());
+            }
         }
         LinePlot plot;
-        plot.axes.title = "speedup of obb over ref vs " + axis;
+        plot.axes.title = "speedup of " + who + " over " + bname + " vs " + axis;
         plot.axes.x_label = axis;
-        plot.axes.y_label = "speedup (ref cycles / obb cycles)";
+        plot.axes.y_label = one ? "speedup (" + bname + " cycles / " + who + " cycles)"
+                                : "speedup (" + bname + " cycles / method cycles)";
         for (auto& [k, s] : series) plot.series.push_back(std::move(s));
         std::string file = "speedup_vs_" + axis + ".svg";
         for (char& ch : file) if (ch == '/' ) ch = '_';
@@ -115,18 +130,20 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
         written.push_back(file);
     }
     // Speedup against the surface-area ratio over every run (figure 9's metric).
-    ScatterPlot scatter;
-    scatter.axes.title = "speedup vs AABB/OBB surface-area ratio";
-    scatter.axes.x_label = "sum AABB area / sum OBB area (paper OBBs)";
-    scatter.axes.y_label = "speedup of obb over ref";
-    for (const RunResult& r : runs) {
-        const double s = r.speedup(Method::Obb);
-        if (s > 0) scatter.points.push_back({r.areas.ratio_paper(), s, ""});
-    }
-    if (scatter.points.size() >= 2) {
+    for (const std::string& method : others) {
+        ScatterPlot scatter;
+        scatter.axes.title = "speedup vs AABB/OBB surface-area ratio";
+        scatter.axes.x_label = "sum AABB area / sum OBB area (paper OBBs)";
+        scatter.axes.y_label = "speedup of " + method + " over " + bname;
+        for (const RunResult& r : runs) {
+            const double s = r.speedup(method);
+            if (s > 0) scatter.points.push_back({r.areas.ratio_paper(), s, ""});
+        }
+        if (scatter.points.size() < 2) continue;
         scatter.guide = ScatterGuide::LeastSquares;
-        write_text_file(path_in(dir, "speedup_vs_area_ratio.svg"), scatter_plot_svg(scatter));
-        written.push_back("speedup_vs_area_ratio.svg");
+        const std::string file = one ? "speedup_vs_area_ratio.svg" : "speedup_vs_area_ratio_" + method + ".svg";
+        write_text_file(path_in(dir, file), scatter_plot_svg(scatter));
+        written.push_back(file);
     }
     return written;
 }

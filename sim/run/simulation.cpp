@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 namespace rtc {
 
@@ -14,20 +15,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-StructureCounts count_structures(const MethodAccel& m) {
-    StructureCounts c;
-    c.width = m.accel.tlas.width;
-    c.tlas_nodes = m.accel.tlas.node_count();
-    c.instances = m.accel.instances.size();
-    for (std::size_t b = 0; b < m.accel.blases.size(); ++b) {
-        const Bvh& blas = m.accel.blases[b];
-        c.blas_nodes += blas.node_count();
-        (m.blas_kind[b] == BlasKind::Triangles ? c.triangles : c.custom_prims) +=
-            blas.primitive_count();
-    }
-    return c;
 }
 
 RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::string& config_file) {
@@ -44,19 +31,28 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::str
 
 }  // namespace
 
-const MethodRun* RunResult::find(Method m) const {
+const MethodRun* RunResult::find(std::string_view name) const {
     for (const MethodRun& r : methods)
-        if (r.method == m) return &r;
+        if (r.method == name) return &r;
     return nullptr;
 }
 
-double RunResult::speedup(Method m, std::size_t preset) const {
-    const MethodRun* ref = find(Method::Ref);
-    const MethodRun* other = find(m);
-    if (!ref || !other || !ref->runnable || !other->runnable || preset >= ref->priced.size() ||
-        preset >= other->priced.size() || other->priced[preset].total_cycles <= 0.0)
+double RunResult::speedup(std::string_view name, std::size_t preset) const {
+    const MethodRun* base = baseline();
+    const MethodRun* other = find(name);
+    if (!base || !other || !base->runnable || !other->runnable || preset >= base->priced.size() ||
+        preset >= other->priced.size() || !base->priced[preset].supported ||
+        !other->priced[preset].supported || other->priced[preset].total_cycles <= 0.0)
         return 0.0;
-    return ref->priced[preset].total_cycles / other->priced[preset].total_cycles;
+    return base->priced[preset].total_cycles / other->priced[preset].total_cycles;
+}
+
+double RunResult::memory_overhead_percent(std::string_view name) const {
+    const MethodRun* base = baseline();
+    const MethodRun* other = find(name);
+    if (!base || !other || !base->runnable || !other->runnable || base->memory.total() <= 0.0)
+        return std::numeric_limits<double>::quiet_NaN();
+    return 100.0 * (other->memory.total() - base->memory.total()) / base->memory.total();
 }
 
 RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
@@ -81,10 +77,11 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry), c.file);
     r.camera = frame.camera;
     bool rays_written = false;
-    for (const Method method : c.methods) {
+    for (const std::string& name : c.methods) {
+        const MethodEntry& method = *find_method(name);  // names were checked when parsing
         MethodRun m;
-        m.method = method;
-        m.instances = instance_count(method, geometry);
+        m.method = name;
+        m.instances = method.instance_count(geometry);
         if (m.instances > r.memory.instance_limit) {
             m.runnable = false;
             m.reason = std::to_string(m.instances) + " instances exceed the instance limit of " +
@@ -92,24 +89,23 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
             r.methods.push_back(std::move(m));
             continue;
         }
-        const std::string name(method_name(method));
         const auto t_build = std::chrono::steady_clock::now();
         if (!ctx.quiet) std::fprintf(stderr, "build %s: %llu instances...", name.c_str(),
                                      static_cast<unsigned long long>(m.instances));
         MethodOptions build = c.build;
         build.custom_blas.threads = build.triangle_blas.threads = build.tlas.threads = ctx.threads;
-        const MethodAccel accel = build_method(method, geometry, build);
+        const std::unique_ptr<BuiltMethod> built = method.build(geometry, build);
         m.build_seconds = seconds_since(t_build);
         if (!ctx.quiet) std::fprintf(stderr, " done in %.2f s\n", m.build_seconds);
-        m.structures = count_structures(accel);
-        m.simulator_bytes = accel.accel.memory_bytes();
+        m.structures = built->structures();
+        m.simulator_bytes = built->simulator_bytes();
         FrameOptions fo;
         fo.threads = ctx.threads;
         fo.progress = !ctx.quiet;
         fo.label = "trace " + name;
         fo.record_hits = c.output.write_hits;
         fo.record_rays = c.output.write_rays && !rays_written;
-        m.frame = run_frame(accel, geometry, frame, c.trace, fo);
+        m.frame = built->run(geometry, frame, c.trace, fo);
         if (!ctx.out_dir.empty() && fo.record_rays) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
             rays_written = true;
@@ -123,7 +119,12 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         m.frame.rays.shrink_to_fit();
         m.frame.hits.clear();
         m.frame.hits.shrink_to_fit();
-        for (const CostModel& cost : r.costs) m.priced.push_back(price(m.frame.totals, cost));
+        for (const CostModel& cost : r.costs) {
+            PricedRun p = price(m.frame.totals, cost);
+            p.missing_feature = cost.missing_feature(method.info.needs);
+            p.supported = p.missing_feature.empty();
+            m.priced.push_back(std::move(p));
+        }
         m.memory = price_memory(m.structures, r.memory, c.kind, r.primitives,
                                 scene.mesh.vertices.size(), scene.mesh.triangles.size());
         r.methods.push_back(std::move(m));

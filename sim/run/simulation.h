@@ -16,7 +16,7 @@
 namespace rtc {
 
 struct MethodRun {
-    Method method = Method::Ref;
+    std::string method;
     bool runnable = true;
     std::string reason;                // why not runnable
     std::uint64_t instances = 0;
@@ -42,9 +42,13 @@ struct RunResult {
     std::vector<MethodRun> methods;
     double load_seconds = 0.0, convert_seconds = 0.0, total_seconds = 0.0;
 
-    [[nodiscard]] const MethodRun* find(Method m) const;
-    // cycles(ref) / cycles(method) under preset `preset`; 0 when not available.
-    [[nodiscard]] double speedup(Method m, std::size_t preset = 0) const;
+    [[nodiscard]] const MethodRun* find(std::string_view method) const;
+    // The baseline's run (config.baseline), or nullptr when it was not run.
+    [[nodiscard]] const MethodRun* baseline() const { return find(config.baseline); }
+    // cycles(baseline) / cycles(method) under preset `preset`; 0 when not available.
+    [[nodiscard]] double speedup(std::string_view method, std::size_t preset = 0) const;
+    // Total memory of `method` over the baseline's, in percent; NaN when not available.
+    [[nodiscard]] double memory_overhead_percent(std::string_view method) const;
 };
 
 struct RunContext {

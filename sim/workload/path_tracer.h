@@ -14,7 +14,7 @@
 #include "sim/workload/camera.h"
 #include "sim/workload/rng.h"
 #include "sim/workload/sampling.h"
-#include "sim/methods/trace_hit.h"
+#include "sim/hardware/trace_hit.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -14,7 +14,7 @@
 #pragma once
 
 #include "core/ray.h"
-#include "sim/methods/trace_hit.h"
+#include "sim/hardware/trace_hit.h"
 
 #include <cstddef>
 #include <cstdint>

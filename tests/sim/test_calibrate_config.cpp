@@ -107,7 +107,7 @@ TEST_CASE("calibrate config: errors name the file and JSON path") {
 
     CHECK(error_of(block(params + "," + targets + R"(, "outptu": "x")")) ==
           "runs/x.json: /calibrate/outptu: unknown key (expected one of: parameters, targets, output, "
-          "name, description, reference, max_iterations, start)");
+          "name, description, reference, max_iterations, start, method)");
     CHECK(error_of(block(targets)) ==
           "runs/x.json: /calibrate/parameters: missing (expected a non-empty array of parameters)");
     CHECK(error_of(block(params + R"(, "targets": [])")) ==

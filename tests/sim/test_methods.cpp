@@ -4,7 +4,8 @@
 // and without a mesh; and their all-candidates IS call counts equal brute
 // force over the primitives' AABBs and OBBs.
 #include "core_test_util.h"
-#include "sim/methods/trace_ray.h"
+#include "core/two_level.h"
+#include "sim/methods/method.h"
 
 #include <doctest/doctest.h>
 
@@ -77,18 +78,18 @@ MethodOptions options(int width) {
     return o;
 }
 
+std::unique_ptr<BuiltMethod> build(std::string_view name, const Geometry& g, const MethodOptions& o) {
+    const MethodEntry* m = find_method(name);
+    REQUIRE(m != nullptr);
+    return m->build(g, o);
+}
+
 template <TraversalMode Mode = TraversalMode::Closest>
-TraceHit trace_any(const MethodAccel& m, const Geometry& g, const Ray& ray, CountingSink& sink,
-                   IsSchedule schedule) {
+TraceHit trace_any(const std::unique_ptr<BuiltMethod>& m, const Geometry& g, const Ray& ray,
+                   CountingSink& sink, IsSchedule schedule) {
     TraceOptions o;
     o.schedule = schedule;
-    TraceScratch scratch;
-    return std::visit(
-        [&](const auto& prims) {
-            using Prim = typename std::decay_t<decltype(prims)>::value_type;
-            return trace_ray<Mode, Prim>(m, prims, g.triangles, ray, sink, o, scratch);
-        },
-        g.prims);
+    return m->trace(g, ray, o, sink, Mode);
 }
 
 Ray scene_ray(Rng& rng) {
@@ -109,8 +110,8 @@ TEST_CASE("methods: ref and obb return the same closest hit for every ray") {
             for (const int width : {2, 4, 8}) {
                 Rng rng(1000 + static_cast<int>(kind) * 10 + mesh * 3 + width);
                 const Geometry g = random_geometry(rng, kind, 600, mesh);
-                const MethodAccel ref = build_method(Method::Ref, g, options(width));
-                const MethodAccel obb = build_method(Method::Obb, g, options(width));
+                const auto ref = build("ref", g, options(width));
+                const auto obb = build("obb", g, options(width));
                 CAPTURE(kind_name(kind));
                 CAPTURE(mesh);
                 CAPTURE(width);
@@ -146,7 +147,7 @@ TEST_CASE("methods: ref and obb return the same closest hit for every ray") {
 TEST_CASE("methods: deferred and immediate scheduling agree on hits, deferred calls more programs") {
     Rng rng(77);
     const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 2000, true);
-    const MethodAccel ref = build_method(Method::Ref, g, options(4));
+    const auto ref = build("ref", g, options(4));
     std::uint64_t immediate_calls = 0, deferred_calls = 0;
     for (int i = 0; i < 1000; ++i) {
         const Ray ray = scene_ray(rng);
@@ -166,8 +167,8 @@ TEST_CASE("methods: all-candidates IS calls equal the AABBs (ref) and OBBs (obb)
     for (const PrimitiveKind kind : kKinds) {
         Rng rng(500 + static_cast<int>(kind));
         const Geometry g = random_geometry(rng, kind, 800, false);
-        const MethodAccel ref = build_method(Method::Ref, g, options(4));
-        const MethodAccel obb = build_method(Method::Obb, g, options(4));
+        const auto ref = build("ref", g, options(4));
+        const auto obb = build("obb", g, options(4));
         CAPTURE(kind_name(kind));
         std::uint64_t total_ref = 0, total_obb = 0;
         for (int i = 0; i < 300; ++i) {
@@ -181,8 +182,10 @@ TEST_CASE("methods: all-candidates IS calls equal the AABBs (ref) and OBBs (obb)
                 [&](const auto& prims) {
                     for (std::size_t p = 0; p < prims.size(); ++p) {
                         aabbs += intersect_box(bounds(prims[p]), ray.origin, inv, ray.tmin, ray.tmax) < kInfinity;
-                        // The same float operations the hardware model performs at an instance.
-                        const Instance& inst = obb.accel.instances[p];
+                        // The same float operations the hardware model performs at
+                        // the instance obb builds for primitive p.
+                        const Instance inst = make_instance(
+                            0, 0, oriented_bounds(prims[p], ObbVariant::Paper).world_from_unit);
                         const Ray o = inst.object_from_world.ray(ray);
                         obbs += intersect_box(kUnitBox, o.origin, safe_inverse(o.direction), o.tmin, o.tmax) < kInfinity;
                     }
@@ -201,17 +204,19 @@ TEST_CASE("methods: all-candidates IS calls equal the AABBs (ref) and OBBs (obb)
 TEST_CASE("methods: instance counts and structure of each method") {
     Rng rng(3);
     const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 100, true);
-    CHECK(instance_count(Method::Ref, g) == 2);
-    CHECK(instance_count(Method::Obb, g) == 101);
-    const MethodAccel obb = build_method(Method::Obb, g, options(4));
-    CHECK(obb.accel.instances.size() == 101);
-    CHECK(obb.accel.blases[0].primitive_count() == 1);  // the unit-box BLAS
-    CHECK(obb.blas_kind[1] == BlasKind::Triangles);
+    CHECK(find_method("ref")->instance_count(g) == 2);
+    CHECK(find_method("obb")->instance_count(g) == 101);
+    const auto obb = build("obb", g, options(4));
+    const StructureCounts c = obb->structures();
+    CHECK(c.instances == 101);
+    CHECK(c.custom_prims == 1);  // the unit-box BLAS
+    CHECK(c.triangles == g.triangles.size());
     // Instance i's transform is primitive i's OBB: the capsule's end-cap tips
     // (the points of the capsule farthest along its axis) lie inside it.
     const auto& caps = std::get<std::vector<Capsule>>(g.prims);
     for (std::size_t i = 0; i < caps.size(); ++i) {
-        const Obb box{obb.accel.instances[i].world_from_object};
+        const Obb box{make_instance(0, 0, oriented_bounds(caps[i], ObbVariant::Paper).world_from_unit)
+                          .world_from_object};
         const Vec3 axis = caps[i].p1 - caps[i].p0;
         const float len = glm::length(axis);
         const Vec3 dir = len > 0 ? axis / len : Vec3(0, 0, 1);

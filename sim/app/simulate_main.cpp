@@ -1,0 +1,36 @@
+#include "sim/app/simulate_main.h"
+
+#include "sim/app/cli.h"
+#include "sim/app/run_all.h"
+#include "core/input_error.h"
+#include "sim/util/json_file.h"
+#include "sim/util/version.h"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+namespace rtc {
+
+int simulate_main(const std::vector<std::string>& args) {
+    try {
+        const CliOptions cli = parse_cli(args);
+        if (cli.help) {
+            std::cout << cli_help();
+            return 0;
+        }
+        if (cli.version) {
+            std::cout << "simulate (rtcsim) " << kVersion << "\n";
+            return 0;
+        }
+        return run_all(cli);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "simulate: error: %s\n", e.what());
+        return 3;
+    }
+}
+
+}  // namespace rtc

@@ -1,0 +1,120 @@
+// What the simulated hardware does when traversal reaches a primitive, shared
+// by every method: a triangle is tested in the RT unit; a custom primitive is
+// a context switch into its user intersection program on the SM, run at once
+// or deferred to the end of traversal. A method decides which leaves reach
+// which of these, with which ray and index; this file decides what happens
+// there and keeps the closest hit.
+#pragma once
+
+#include "core/sinks.h"
+#include "core/traverse.h"
+#include "intersectors/capsule.h"
+#include "intersectors/cylinder.h"
+#include "intersectors/link.h"
+#include "intersectors/phantom.h"
+#include "intersectors/triangle.h"
+#include "sim/hardware/trace_hit.h"
+
+#include <algorithm>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+namespace rtc {
+
+// When intersection programs run (a traversal policy, not a cost):
+// Immediate: as OptiX on Turing, when the leaf is reached; an accepted hit
+//            shrinks tmax at once.
+// Deferred:  as Vulkan-Sim models it, candidates are collected during
+//            traversal and the programs run afterwards (with the world-space
+//            ray), so custom hits do not shrink tmax during traversal.
+enum class IsSchedule : std::uint8_t { Immediate, Deferred };
+
+struct TraceOptions {
+    IsSchedule schedule = IsSchedule::Immediate;
+    PhantomOptions phantom;
+};
+
+// Per-thread scratch reused across rays (no allocation per ray).
+struct TraceScratch {
+    std::vector<std::uint32_t> deferred;
+};
+
+template <class Prim, class Sink>
+std::optional<Hit> run_intersection_program(const Prim& prim, const Ray& ray, Sink& sink,
+                                            const TraceOptions& options) {
+    if constexpr (std::is_same_v<Prim, PhantomCurve>)
+        return intersect(prim, ray, sink, options.phantom);
+    else
+        return intersect(prim, ray, sink);
+}
+
+// The leaf handling of one ray. A method's trace function calls begin(),
+// then triangle() / custom() for each primitive its traversal reaches (each
+// returns the distance of an accepted hit, or +inf), then finish().
+template <class Prim, class Sink>
+class LeafPrograms {
+public:
+    LeafPrograms(std::span<const Prim> prims, std::span<const Triangle> triangles,
+                 const TraceOptions& options, TraceScratch& scratch, Sink& sink)
+        : prims_(prims), triangles_(triangles), options_(options), scratch_(scratch), sink_(sink) {}
+
+    [[nodiscard]] Sink& sink() { return sink_; }
+
+    void begin() {
+        sink_.on(Event::Ray);
+        best_ = {};
+        scratch_.deferred.clear();
+    }
+
+    // A hardware ray/triangle test (object-space ray of the triangle's instance).
+    float triangle(std::uint32_t index, Ray object_ray, float tmax) {
+        object_ray.tmax = tmax;
+        const auto h = intersect(triangles_[index], object_ray, sink_);
+        return h ? offer({h->t, h->normal, h->u, index, GeometryId::Triangles}) : kInfinity;
+    }
+
+    // A custom-primitive leaf: the hand-over to the SM, then primitive
+    // `index`'s program with `ray` (now, or after traversal when deferred).
+    float custom(std::uint32_t index, const Ray& ray, float tmax) {
+        sink_.on(Event::ContextSwitch);
+        if (options_.schedule == IsSchedule::Deferred) {
+            scratch_.deferred.push_back(index);
+            return kInfinity;
+        }
+        return run_program(index, ray, tmax);
+    }
+
+    // Runs the deferred programs (world-space ray) and returns the closest hit.
+    template <TraversalMode Mode>
+    TraceHit finish(const Ray& ray) {
+        for (const std::uint32_t index : scratch_.deferred)
+            run_program(index, ray,
+                        Mode == TraversalMode::Closest ? std::min(best_.t, ray.tmax) : ray.tmax);
+        return best_;
+    }
+
+private:
+    float offer(const TraceHit& candidate) {
+        if (candidate.closer_than(best_)) best_ = candidate;
+        return candidate.t;
+    }
+
+    float run_program(std::uint32_t index, Ray ray, float tmax) {
+        sink_.on(Event::IsCall);
+        ray.tmax = tmax;
+        const auto h = run_intersection_program(prims_[index], ray, sink_, options_);
+        if (!h) return kInfinity;
+        sink_.on(Event::ReportedHit);
+        return offer({h->t, h->normal, h->u, index, GeometryId::Curves});
+    }
+
+    std::span<const Prim> prims_;
+    std::span<const Triangle> triangles_;
+    const TraceOptions& options_;
+    TraceScratch& scratch_;
+    Sink& sink_;
+    TraceHit best_;
+};
+
+}  // namespace rtc

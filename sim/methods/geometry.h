@@ -1,0 +1,29 @@
+// What every method is built from: the scene's strands converted into
+// primitives of one kind (pre-subdivided for phantom curves) and its mesh as
+// triangles.
+#pragma once
+
+#include "core/aabb.h"
+#include "intersectors/kinds.h"
+#include "intersectors/triangle.h"
+#include "scenes/convert.h"
+#include "scenes/scene.h"
+
+#include <vector>
+
+namespace rtc {
+
+struct Geometry {
+    PrimitiveKind kind = PrimitiveKind::Capsule;
+    PrimitiveArray prims;
+    std::vector<Triangle> triangles;
+
+    [[nodiscard]] std::size_t primitive_count() const;
+};
+
+[[nodiscard]] Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision);
+
+// World bounds of every primitive and triangle (for camera framing).
+[[nodiscard]] Aabb geometry_bounds(const Geometry& geometry);
+
+}  // namespace rtc

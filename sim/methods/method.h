@@ -1,0 +1,82 @@
+// The seam between a way of putting primitives on RT hardware (a "method")
+// and everything else. A method is one file (ref.cpp, obb.cpp, ...) that
+// returns a MethodEntry: its name and what it needs from the hardware preset,
+// how many TLAS instances it will need (checked against the hardware limit
+// before building), and how to build its structures from a Geometry. The
+// built method reports the records the memory model prices and runs a
+// workload through its own ray path: a template instantiated per method and
+// primitive kind, entered through one virtual call per frame, never per ray.
+//
+// Adding a method: write sim/methods/<name>.cpp (see ref.cpp for the pattern
+// and method_adapter.h for the template that compiles its ray path) and add
+// one line to the list in registry.cpp. Code outside the tree (tests, a
+// researcher's experiment) can add one at run time with register_method().
+#pragma once
+
+#include "core/bvh.h"
+#include "core/sinks.h"
+#include "core/traverse.h"
+#include "intersectors/kinds.h"
+#include "sim/execution/frame.h"
+#include "sim/hardware/leaf_programs.h"
+#include "sim/hardware/memory_model.h"
+#include "sim/methods/geometry.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rtc {
+
+struct MethodOptions {
+    BuildOptions custom_blas;     // leaf size 1: one box per custom primitive
+    BuildOptions triangle_blas;   // triangles may share leaves
+    BuildOptions tlas;            // leaf size 1: one box per instance
+    ObbVariant obb = ObbVariant::Paper;
+};
+
+struct MethodInfo {
+    std::string name;                // in configs and reports
+    std::string summary;             // one line, for --help and the docs
+    // Hardware features the method relies on; a cost preset without one of
+    // them prices the method as n/a (see CostModel::features).
+    std::vector<std::string> needs;
+};
+
+// A method's structures, built for one geometry.
+class BuiltMethod {
+public:
+    virtual ~BuiltMethod() = default;
+    // What the memory model prices.
+    [[nodiscard]] virtual StructureCounts structures() const = 0;
+    // The simulator's own bytes for these structures (not the modelled hardware's).
+    [[nodiscard]] virtual std::size_t simulator_bytes() const = 0;
+    // Traces a whole workload (closest hits) on all cores.
+    [[nodiscard]] virtual FrameResult run(const Geometry& geometry, const RayWorkload& workload,
+                                          const TraceOptions& trace,
+                                          const FrameOptions& frame) const = 0;
+    // Traces one ray in any traversal mode (tests and tools).
+    [[nodiscard]] virtual TraceHit trace(const Geometry& geometry, const Ray& ray,
+                                         const TraceOptions& trace, CountingSink& sink,
+                                         TraversalMode mode = TraversalMode::Closest) const = 0;
+};
+
+struct MethodEntry {
+    MethodInfo info;
+    std::function<std::uint64_t(const Geometry&)> instance_count;
+    // Throws std::invalid_argument on a primitive whose bounds are not finite.
+    std::function<std::unique_ptr<BuiltMethod>(const Geometry&, const MethodOptions&)> build;
+};
+
+// Every method, built-in ones first, in registration order.
+[[nodiscard]] const std::vector<MethodEntry>& registered_methods();
+// nullptr when no method has that name.
+[[nodiscard]] const MethodEntry* find_method(std::string_view name);
+// Adds a method; throws std::invalid_argument when the name is taken or empty.
+void register_method(MethodEntry entry);
+// "ref, obb, ..." for error messages and --help.
+[[nodiscard]] std::string method_names_list();
+
+}  // namespace rtc

@@ -1,0 +1,87 @@
+// The architecture as a test (docs/architecture.md): sim/'s folders include
+// only the folders below them, no source file grows past ~400 lines, no
+// folder past ~15 files. The link graph (one CMake library per folder) catches
+// back-edges between .cpp files; this catches header-only ones too.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Each folder and the folders it may include (directly or through others).
+const std::map<std::string, std::set<std::string>> kAllowed = {
+    {"util", {}},
+    {"hardware", {"util"}},
+    {"workload", {"hardware", "util"}},
+    {"execution", {"workload", "hardware", "util"}},
+    {"methods", {"execution", "workload", "hardware", "util"}},
+    {"calibrate", {"hardware", "util"}},
+    {"config", {"methods", "execution", "workload", "hardware", "calibrate", "util"}},
+    {"run", {"config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
+    {"plot", {"util"}},
+    {"report", {"run", "plot", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
+    {"app", {"report", "run", "plot", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
+    {"bench", {"run", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
+};
+
+const fs::path kRoot = RTCSIM_SOURCE_DIR;
+
+bool is_source(const fs::path& p) {
+    const std::string e = p.extension().string();
+    return e == ".h" || e == ".cpp";
+}
+
+}  // namespace
+
+TEST_CASE("architecture: every sim/ folder includes only the folders below it") {
+    std::set<std::string> seen;
+    for (const auto& dir : fs::directory_iterator(kRoot / "sim")) {
+        if (!dir.is_directory()) continue;
+        const std::string folder = dir.path().filename().string();
+        CAPTURE(folder);
+        REQUIRE_MESSAGE(kAllowed.count(folder), "new sim/ folder: add it to kAllowed and docs/architecture.md");
+        seen.insert(folder);
+        for (const auto& f : fs::directory_iterator(dir.path())) {
+            if (!is_source(f.path())) continue;
+            std::ifstream in(f.path());
+            std::string line;
+            int n = 0;
+            while (std::getline(in, line)) {
+                ++n;
+                const std::string tag = "#include \"sim/";
+                if (line.rfind(tag, 0) != 0) continue;
+                const std::string target = line.substr(tag.size(), line.find('/', tag.size()) - tag.size());
+                if (target == folder) continue;
+                CAPTURE(f.path().filename().string());
+                CAPTURE(n);
+                CHECK_MESSAGE(kAllowed.at(folder).count(target), std::string(folder + " must not include sim/" + target));
+            }
+        }
+    }
+    CHECK(seen.size() == kAllowed.size());
+}
+
+TEST_CASE("architecture: files stay under ~400 lines and folders under ~15 files") {
+    for (const char* top : {"sim", "core", "intersectors", "scenes", "tests"}) {
+        for (const auto& e : fs::recursive_directory_iterator(kRoot / top)) {
+            const std::string rel = fs::relative(e.path(), kRoot).string();
+            CAPTURE(rel);
+            if (e.is_directory() && std::string(top) == "sim") {
+                int files = 0;
+                for (const auto& f : fs::directory_iterator(e.path())) files += f.is_regular_file();
+                CHECK(files <= 16);  // ~15 plus the folder's CMakeLists.txt
+            }
+            if (!e.is_regular_file() || !is_source(e.path())) continue;
+            std::ifstream in(e.path());
+            int lines = 0;
+            for (std::string l; std::getline(in, l);) ++lines;
+            CHECK(lines <= 420);
+        }
+    }
+}
