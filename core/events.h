@@ -48,6 +48,42 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
 
+// Where an event's work happens, which decides how a warp combines it (the
+// SIMT execution model, sim/execution/warp.h):
+// Shader:  the ray's own SM work (generation, shading): all lanes in lockstep.
+// RtUnit:  traversal work in the RT unit, per lane.
+// HandOff: the RT unit handing a candidate to the SM (once per IS round).
+// Program: work inside an intersection program, per call; a round costs the
+//          most expensive active lane's program.
+enum class EventUnit : std::uint8_t { Shader, RtUnit, HandOff, Program };
+
+inline constexpr EventUnit kEventUnits[] = {
+    EventUnit::Shader,   // ray
+    EventUnit::RtUnit,   // tlas_node_visit
+    EventUnit::RtUnit,   // tlas_box_test
+    EventUnit::RtUnit,   // instance_transform
+    EventUnit::RtUnit,   // blas_node_visit
+    EventUnit::RtUnit,   // blas_box_test
+    EventUnit::RtUnit,   // triangle_test
+    EventUnit::HandOff,  // context_switch
+    EventUnit::Program,  // is_call
+    EventUnit::Program,  // is_cylinder
+    EventUnit::Program,  // is_capsule
+    EventUnit::Program,  // is_link
+    EventUnit::Program,  // is_phantom
+    EventUnit::Program,  // phantom_iteration
+    EventUnit::Program,  // phantom_early_out
+    EventUnit::Program,  // phantom_early_reject
+    EventUnit::Program,  // phantom_bracket_test
+    EventUnit::Program,  // reported_hit
+};
+
+static_assert(std::size(kEventUnits) == kEventCount, "every Event needs a unit in kEventUnits");
+
+[[nodiscard]] constexpr EventUnit event_unit(Event e) {
+    return kEventUnits[static_cast<std::size_t>(e)];
+}
+
 [[nodiscard]] constexpr std::string_view event_name(Event e) {
     return kEventNames[static_cast<std::size_t>(e)];
 }

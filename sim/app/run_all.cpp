@@ -123,7 +123,11 @@ int run_all(const CliOptions& cli) {
         make_dir(dir);
         if (!cli.quiet && points.size() > 1)
             std::cerr << "[" << i + 1 << "/" << points.size() << "] " << points[i].label << "\n";
-        RunContext ctx{cli.threads, cli.quiet, dir};
+        RunContext ctx;
+        ctx.threads = cli.threads;
+        ctx.quiet = cli.quiet;
+        ctx.record_warps = cli.calibrate;
+        ctx.out_dir = dir;
         RunResult r = run_simulation(parsed[i], points[i].config, ctx);
         r.sweep_values = points[i].values;
         r.sweep_label = points[i].label;

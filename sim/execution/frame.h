@@ -9,7 +9,9 @@
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
 #include "sim/util/progress.h"
+#include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"
+#include "sim/hardware/warp_trace.h"
 
 #include <chrono>
 #include <span>
@@ -35,6 +37,12 @@ struct FrameResult {
     std::vector<TraceHit> hits;           // every traced ray's hit, when recorded
     std::uint64_t rays_traced = 0;
     double trace_seconds = 0.0;
+    // SIMT execution (when FrameOptions::warp is set):
+    std::vector<WarpTotals> warp;           // per FrameOptions::warp_presets entry
+    std::vector<float> pixel_warp_cycles;   // first warp preset: per pixel, its share of its waves
+    std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves
+    std::vector<float> pixel_simt_slots;    // per pixel: rounds x W of its waves
+    WarpTrace warp_trace;                   // every wave, when FrameOptions::record_warps
 };
 
 struct FrameOptions {
@@ -43,13 +51,19 @@ struct FrameOptions {
     bool record_hits = false;
     bool progress = true;
     std::string label = "trace";
+    // SIMT execution: the warp grouping (null: per-ray model only), the
+    // presets priced per wave as the frame runs, and whether to keep every
+    // wave for re-pricing (calibration).
+    const ExecutionModel* warp = nullptr;
+    std::vector<const CostModel*> warp_presets;
+    bool record_warps = false;
 };
 
 // `tracer(const Ray&, CountingSink&, TraceScratch&) -> TraceHit` traces one
 // ray; it is a method's template instantiation, called directly (no virtual
 // call per ray).
 template <class Tracer>
-FrameResult run_frame(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
+FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
     const auto start = std::chrono::steady_clock::now();
     const unsigned threads = fo.threads ? fo.threads : hardware_threads();
     FrameResult out;
@@ -120,6 +134,18 @@ FrameResult run_frame(const RayWorkload& frame, const FrameOptions& fo, const Tr
     out.trace_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+}  // namespace rtc
+
+#include "sim/execution/warp_frame.h"
+
+namespace rtc {
+
+// Traces the workload per ray, or in warps when fo.warp is set.
+template <class Tracer>
+FrameResult run_frame(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
+    return fo.warp ? run_frame_warp(frame, fo, tracer) : run_frame_per_ray(frame, fo, tracer);
 }
 
 }  // namespace rtc

@@ -24,6 +24,7 @@ PricedRun price(const EventTotals& counts, const CostModel& model) {
         out.by_event[i] = static_cast<double>(counts.n[i]) * model.cycles[i];
         out.total_cycles += out.by_event[i];
     }
+    out.per_ray_cycles = out.total_cycles;
     return out;
 }
 
@@ -37,7 +38,7 @@ double price_cycles(const RayCounts& counts, const CostModel& model) {
 CostModel parse_cost_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "features", "cycles"});
+    r.allow_only({"name", "description", "features", "execution", "cycles"});
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
@@ -51,6 +52,7 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
             m.features.push_back(f[i].get<std::string>());
         }
     }
+    if (r.has("execution")) m.execution = parse_execution_model(r.child("execution"));
     const JsonReader cycles = r.child("cycles");
     for (const auto& [key, value] : cycles.json().items())
         if (!event_from_name(key)) cycles.fail(key, "unknown event (see core/events.h)");
@@ -74,6 +76,19 @@ std::string cost_model_to_json(const CostModel& m) {
     j["name"] = m.name;
     j["description"] = m.description;
     j["features"] = m.features;
+    if (m.execution.warp() || !m.execution.sources.empty()) {
+        nlohmann::ordered_json e;
+        const auto source = [&](const std::string& key) {
+            for (const auto& [k, v] : m.execution.sources)
+                if (k == key) return v;
+            return std::string("default");
+        };
+        e["model"] = {{"value", execution_name(m.execution.kind)}, {"source", source("model")}};
+        e["warp_width"] = {{"value", m.execution.warp_width}, {"source", source("warp_width")}};
+        e["tile"] = {{"value", {m.execution.tile_width, m.execution.tile_height}}, {"source", source("tile")}};
+        e["rt_parallel_lanes"] = {{"value", m.execution.rt_parallel_lanes}, {"source", source("rt_parallel_lanes")}};
+        j["execution"] = e;
+    }
     nlohmann::ordered_json cycles;
     for (std::size_t i = 0; i < kEventCount; ++i)
         cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/sinks.h"
+#include "sim/hardware/execution_model.h"
 
 #include <array>
 #include <string>
@@ -20,6 +21,7 @@ struct CostModel {
     // Hardware features the preset's machine has; a method needing one it
     // lacks is priced n/a. Default: what Turing-class RT hardware has.
     std::vector<std::string> features{"custom_primitives", "instance_transforms"};
+    ExecutionModel execution;  // per_ray unless the preset has an "execution" block
 
     [[nodiscard]] bool has_feature(std::string_view f) const;
     // The first of `needs` this preset lacks, or empty.
@@ -32,7 +34,9 @@ struct CostModel {
 struct PricedRun {
     bool supported = true;   // false: the preset's hardware lacks a feature the method needs
     std::string missing_feature;
-    double total_cycles = 0.0;
+    ExecutionKind execution = ExecutionKind::PerRay;
+    double total_cycles = 0.0;     // under the preset's execution model
+    double per_ray_cycles = 0.0;   // the per-ray sum, whatever the model (for comparison)
     std::array<double, kEventCount> by_event{};  // cycles spent on each event
 };
 

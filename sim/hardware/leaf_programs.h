@@ -38,6 +38,10 @@ struct TraceOptions {
 // Per-thread scratch reused across rays (no allocation per ray).
 struct TraceScratch {
     std::vector<std::uint32_t> deferred;
+    // The SIMT model needs each program call's own events: when set, every
+    // call of the current ray appends them to `calls` (cleared per ray).
+    bool record_calls = false;
+    std::vector<RayCounts> calls;
 };
 
 template <class Prim, class Sink>
@@ -65,6 +69,7 @@ public:
         sink_.on(Event::Ray);
         best_ = {};
         scratch_.deferred.clear();
+        scratch_.calls.clear();
     }
 
     // A hardware ray/triangle test (object-space ray of the triangle's instance).
@@ -101,11 +106,25 @@ private:
     }
 
     float run_program(std::uint32_t index, Ray ray, float tmax) {
-        sink_.on(Event::IsCall);
         ray.tmax = tmax;
-        const auto h = run_intersection_program(prims_[index], ray, sink_, options_);
+        if constexpr (Sink::kCounts) {
+            if (scratch_.record_calls) {  // the call's events on their own, then into the ray's
+                CountingSink call;
+                const float t = program(index, ray, call);
+                sink_.ray += call.ray;
+                scratch_.calls.push_back(call.ray);
+                return t;
+            }
+        }
+        return program(index, ray, sink_);
+    }
+
+    template <class ProgramSink>
+    float program(std::uint32_t index, const Ray& ray, ProgramSink& sink) {
+        sink.on(Event::IsCall);
+        const auto h = run_intersection_program(prims_[index], ray, sink, options_);
         if (!h) return kInfinity;
-        sink_.on(Event::ReportedHit);
+        sink.on(Event::ReportedHit);
         return offer({h->t, h->normal, h->u, index, GeometryId::Curves});
     }
 

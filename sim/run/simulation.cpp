@@ -1,5 +1,7 @@
 #include "sim/run/simulation.h"
 
+#include "core/input_error.h"
+
 #include "sim/util/json_reader.h"
 #include "sim/workload/ray_file.h"
 #include "sim/config/scene_config.h"
@@ -7,6 +9,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <climits>
+#include <cstdint>
 #include <limits>
 
 namespace rtc {
@@ -63,6 +67,20 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.effective_config = effective;
     for (const std::string& p : c.cost_presets) r.costs.push_back(load_cost_model(p));
     r.memory = load_memory_model(c.memory_preset);
+    // One traced frame serves every preset, so warp presets must group rays alike.
+    std::vector<const CostModel*> warp_presets;
+    std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
+    for (std::size_t p = 0; p < r.costs.size(); ++p) {
+        const CostModel& cost = r.costs[p];
+        if (!cost.execution.warp()) continue;
+        if (!r.warp_grouping) r.warp_grouping = cost.execution;
+        if (!r.warp_grouping->same_grouping(cost.execution))
+            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
+                             " groups rays into other warps (warp_width, tile) than " + r.costs[0].name +
+                             "; presets of one run must share them");
+        warp_index[p] = warp_presets.size();
+        warp_presets.push_back(&cost);
+    }
 
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
@@ -105,6 +123,9 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         fo.label = "trace " + name;
         fo.record_hits = c.output.write_hits;
         fo.record_rays = c.output.write_rays && !rays_written;
+        fo.warp = r.warp_grouping ? &*r.warp_grouping : nullptr;
+        fo.warp_presets = warp_presets;
+        fo.record_warps = ctx.record_warps && r.warp_grouping.has_value();
         m.frame = built->run(geometry, frame, c.trace, fo);
         if (!ctx.out_dir.empty() && fo.record_rays) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
@@ -119,8 +140,15 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         m.frame.rays.shrink_to_fit();
         m.frame.hits.clear();
         m.frame.hits.shrink_to_fit();
-        for (const CostModel& cost : r.costs) {
+        for (std::size_t k = 0; k < r.costs.size(); ++k) {
+            const CostModel& cost = r.costs[k];
             PricedRun p = price(m.frame.totals, cost);
+            p.execution = cost.execution.kind;
+            m.warp.emplace_back();
+            if (warp_index[k] != SIZE_MAX) {
+                m.warp.back() = m.frame.warp[warp_index[k]];
+                p.total_cycles = m.warp.back().cycles();
+            }
             p.missing_feature = cost.missing_feature(method.info.needs);
             p.supported = p.missing_feature.empty();
             m.priced.push_back(std::move(p));

@@ -10,6 +10,7 @@
 #include "sim/hardware/memory_model.h"
 #include "sim/config/run_config.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@ struct MethodRun {
     std::size_t simulator_bytes = 0;   // the simulator's own structures (not the model)
     FrameResult frame;
     std::vector<PricedRun> priced;     // one per cost preset, in config order
+    std::vector<WarpTotals> warp;      // per cost preset: the warp model's figures (warp presets only)
     MemoryBreakdown memory;
 };
 
@@ -37,6 +39,7 @@ struct RunResult {
     AreaStats areas;
     std::uint64_t primitives = 0;
     std::vector<CostModel> costs;
+    std::optional<ExecutionModel> warp_grouping;  // the warp presets' grouping, if any
     MemoryModel memory;
     Camera camera;                     // resolved camera (camera workloads)
     std::vector<MethodRun> methods;
@@ -54,6 +57,7 @@ struct RunResult {
 struct RunContext {
     unsigned threads = 0;
     bool quiet = false;
+    bool record_warps = false;  // keep every wave (calibration re-prices them)
     std::string out_dir;  // rays/hits files are streamed here when requested
 };
 

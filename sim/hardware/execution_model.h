@@ -1,0 +1,51 @@
+// How the hardware executes rays, selected in the hardware (cost) preset:
+//
+// per_ray: every ray's events priced on their own and summed (the model of
+//          the first version: no divergence, no lockstep).
+// warp:    SIMT. Rays run in warps of W lanes (camera workloads: a pixel tile
+//          at one sample index, bounce k of its paths is the warp's k-th
+//          wave; ray files: W consecutive rays). Per wave:
+//            shader work (event unit Shader) once: the lanes run in lockstep;
+//            RT-unit work per lane, combined as max(slowest lane, sum / P):
+//              P = rt_parallel_lanes lanes' traversals overlap in the unit
+//              (P = 1: throughput-bound, a sum; P = W: latency-bound, the
+//              slowest lane);
+//            intersection programs in rounds: round r serves each lane's r-th
+//              candidate and costs one hand-off (context switch) plus the most
+//              expensive active lane's program (its own events priced).
+// The formulas and their sources: docs/execution-model.md.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rtc {
+
+class JsonReader;
+
+enum class ExecutionKind : std::uint8_t { PerRay, Warp };
+
+struct ExecutionModel {
+    ExecutionKind kind = ExecutionKind::PerRay;
+    int warp_width = 32;           // lanes per warp
+    int tile_width = 8, tile_height = 4;  // the pixel tile a camera warp covers
+    double rt_parallel_lanes = 32; // lanes whose RT-unit work overlaps (1..W)
+    std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
+
+    [[nodiscard]] bool warp() const { return kind == ExecutionKind::Warp; }
+    // Same warp grouping (so one traced frame serves both presets).
+    [[nodiscard]] bool same_grouping(const ExecutionModel& o) const {
+        return warp_width == o.warp_width && tile_width == o.tile_width && tile_height == o.tile_height;
+    }
+};
+
+// Reads the optional "execution" block of a cost preset:
+// {"model": {"value": "warp", "source": ...}, "warp_width": {...},
+//  "tile": {"value": [8, 4], ...}, "rt_parallel_lanes": {...}}.
+[[nodiscard]] ExecutionModel parse_execution_model(const JsonReader& block);
+
+[[nodiscard]] const char* execution_name(ExecutionKind k);
+
+}  // namespace rtc

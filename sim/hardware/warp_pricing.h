@@ -1,0 +1,68 @@
+// Pricing one warp wave under the SIMT execution model (execution_model.h):
+// what each lane's ray did (its events, and each intersection-program call's
+// own events in call order), and the cycles the warp spends on it.
+#pragma once
+
+#include "core/sinks.h"
+#include "sim/hardware/cost_model.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace rtc {
+
+// One active lane of a wave.
+struct LaneWork {
+    RayCounts counts;                          // every event of the lane's ray
+    std::uint32_t first_call = 0, calls = 0;   // its program calls in WaveWork::calls
+    std::uint32_t pixel = 0;                   // where its cost is shown (camera workloads)
+};
+
+// The lanes of one wave (idle lanes are simply absent).
+struct WaveWork {
+    std::vector<LaneWork> lanes;
+    std::vector<RayCounts> calls;  // each call's own events (unit Program)
+
+    void clear() {
+        lanes.clear();
+        calls.clear();
+    }
+};
+
+struct WavePrice {
+    double shader = 0.0, rt = 0.0, handoff = 0.0, programs = 0.0;
+    std::uint32_t rounds = 0;              // IS rounds: the most calls of any lane
+    std::uint32_t active_lane_rounds = 0;  // sum over rounds of the lanes with a call
+    double rt_lane_sum = 0.0;              // sum over lanes of their own RT cycles
+
+    [[nodiscard]] double total() const { return shader + rt + handoff + programs; }
+};
+
+// Effective event counts: with the argmax lanes and calls the prices chose,
+// the wave's cycles are exactly sum_e counts[e] * cost[e] (every term is a
+// max or sum of linear functions of the costs). Calibration fits with them.
+using EffectiveCounts = std::array<double, kEventCount>;
+
+[[nodiscard]] WavePrice price_wave(const WaveWork& wave, const CostModel& model,
+                                   EffectiveCounts* effective = nullptr);
+
+// Sums over many waves, for one preset.
+struct WarpTotals {
+    double shader = 0.0, rt = 0.0, handoff = 0.0, programs = 0.0;
+    double rt_lane_sum = 0.0;
+    std::uint64_t waves = 0, lanes = 0, rounds = 0, active_lane_rounds = 0;
+
+    void add(const WavePrice& p, std::size_t active_lanes);
+    WarpTotals& operator+=(const WarpTotals& o);
+    [[nodiscard]] double cycles() const { return shader + rt + handoff + programs; }
+    // Active lanes per IS round over the warp width (Nsight's "active threads
+    // per warp" for the program phase); 1 when no round ran.
+    [[nodiscard]] double simt_efficiency(int warp_width) const;
+    // Vulkan-Sim's RT SIMT efficiency: lanes' own RT time over W x the warp's.
+    [[nodiscard]] double rt_efficiency(int warp_width) const;
+    // Active lanes per wave over W (idle lanes: ended paths, partial tiles).
+    [[nodiscard]] double occupancy(int warp_width) const;
+};
+
+}  // namespace rtc
