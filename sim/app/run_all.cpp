@@ -45,23 +45,29 @@ void make_dir(const std::string& dir) {
 
 // `simulate calibrate`: fit the config's chosen costs to its target speedups
 // by re-pricing the counts each run recorded (no tracing again).
-void calibrate_runs(const std::vector<RunResult>& runs, const nlohmann::json& config,
+void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
                     const std::string& file, const std::string& out, bool quiet) {
     if (!config.contains("calibrate"))
         throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
     const CalibrateDesc desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
     std::vector<CalibrationRun> fit_runs;
     std::vector<std::string> skipped;
-    for (const RunResult& r : runs) {
+    for (RunResult& r : runs) {
         const std::string label = r.sweep_label.empty() ? r.config.name : r.sweep_label;
         const CalibrationTarget* target = find_target(desc, r.sweep_values, label);
-        const MethodRun* ref = r.baseline();
-        const MethodRun* obb = r.find(desc.method);
+        MethodRun* ref = const_cast<MethodRun*>(r.baseline());
+        MethodRun* obb = const_cast<MethodRun*>(r.find(desc.method));
         if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
             skipped.push_back(label);
             continue;
         }
-        fit_runs.push_back({label, ref->frame.totals, obb->frame.totals, target->speedup, target->weight});
+        CalibrationRun run{label, ref->frame.totals, obb->frame.totals, nullptr, nullptr, target->speedup,
+                           target->weight};
+        if (ref->frame.warp_trace.waves() > 0 && obb->frame.warp_trace.waves() > 0) {
+            run.ref_warps = std::make_shared<WarpTrace>(std::move(ref->frame.warp_trace));
+            run.obb_warps = std::make_shared<WarpTrace>(std::move(obb->frame.warp_trace));
+        }
+        fit_runs.push_back(std::move(run));
     }
     std::vector<nlohmann::json> values;
     std::vector<std::string> labels;

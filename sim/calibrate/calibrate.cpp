@@ -28,6 +28,14 @@ struct Row {
     Side ref, obb;
     double log_target = 0.0;
     double sqrt_w = 1.0;
+    const CalibrationRun* warp_run = nullptr;  // set: sides depend on theta (re-linearized)
+};
+
+// What every re-linearization needs.
+struct FitContext {
+    const CostModel& start;
+    const std::vector<FitParameter>& params;
+    const std::vector<int>& owner;
 };
 
 [[nodiscard]] std::string fmt(double x, const char* spec = "%.6g") {
@@ -36,17 +44,24 @@ struct Row {
     return buf;
 }
 
+// Effective counts indexed like EventTotals.
+struct EffectiveView {
+    const EffectiveCounts& c;
+    double operator[](Event e) const { return c[static_cast<std::size_t>(e)]; }
+};
+
 [[nodiscard]] double multiplier(const FitParameter& p, Event e, const CostModel& start) {
     return p.tie == Tie::Scale ? start[e] : 1.0;
 }
 
-[[nodiscard]] Side make_side(const EventTotals& n, const CostModel& start,
+template <class Counts>
+[[nodiscard]] Side make_side(const Counts& n, const CostModel& start,
                              const std::vector<FitParameter>& params,
                              const std::vector<int>& owner) {
     Side s;
     s.a.assign(params.size(), 0.0);
     for (std::size_t i = 0; i < kEventCount; ++i) {
-        const double count = static_cast<double>(n.n[i]);
+        const double count = static_cast<double>(n[static_cast<Event>(i)]);
         if (owner[i] < 0) {
             s.base += count * start.cycles[i];
         } else {
@@ -63,8 +78,33 @@ struct Row {
     return c;
 }
 
+[[nodiscard]] CostModel model_at(const FitContext& fit, const Vec& theta) {
+    CostModel m = fit.start;
+    for (std::size_t k = 0; k < fit.params.size(); ++k)
+        for (Event e : fit.params[k].events) m[e] = theta[k] * multiplier(fit.params[k], e, fit.start);
+    return m;
+}
+
+// Warp-model cycles are piecewise linear in the costs: at theta, the lanes and
+// calls that take each max fix effective counts whose linear price is exact
+// there (sim/hardware/warp_pricing.h). Rows of warp runs are re-made at theta.
+void relinearize(std::vector<Row>& rows, const Vec& theta, const FitContext& fit) {
+    CostModel m;
+    bool made = false;
+    for (Row& row : rows) {
+        if (!row.warp_run) continue;
+        if (!made) m = model_at(fit, theta), made = true;
+        EffectiveCounts er{}, eo{};
+        (void)row.warp_run->ref_warps->price(m, &er);
+        (void)row.warp_run->obb_warps->price(m, &eo);
+        row.ref = make_side(EffectiveView{er}, fit.start, fit.params, fit.owner);
+        row.obb = make_side(EffectiveView{eo}, fit.start, fit.params, fit.owner);
+    }
+}
+
 // Residuals; false when some run's cycles are not positive (a forbidden point).
-[[nodiscard]] bool residuals(const std::vector<Row>& rows, const Vec& theta, Vec& r) {
+[[nodiscard]] bool residuals(std::vector<Row>& rows, const Vec& theta, Vec& r, const FitContext& fit) {
+    relinearize(rows, theta, fit);
     r.assign(rows.size(), 0.0);
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const double cr = cycles(rows[i].ref, theta), co = cycles(rows[i].obb, theta);
@@ -74,7 +114,8 @@ struct Row {
     return true;
 }
 
-[[nodiscard]] Mat jacobian(const std::vector<Row>& rows, const Vec& theta) {
+[[nodiscard]] Mat jacobian(std::vector<Row>& rows, const Vec& theta, const FitContext& fit) {
+    relinearize(rows, theta, fit);
     Mat J(rows.size(), Vec(theta.size(), 0.0));
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const double cr = cycles(rows[i].ref, theta), co = cycles(rows[i].obb, theta);
@@ -132,18 +173,18 @@ struct LmOutcome {
 
 // Projected LM: parameters held at a bound by the gradient are frozen for the
 // step; the step of the others is clipped into the box.
-[[nodiscard]] LmOutcome levenberg_marquardt(const std::vector<Row>& rows, Vec theta,
+[[nodiscard]] LmOutcome levenberg_marquardt(std::vector<Row>& rows, Vec theta,
                                             const std::vector<FitParameter>& params,
-                                            int max_iterations) {
+                                            int max_iterations, const FitContext& fit) {
     const std::size_t np = theta.size();
     LmOutcome out;
     Vec r;
-    (void)residuals(rows, theta, r);  // validated positive by the caller
+    (void)residuals(rows, theta, r, fit);  // validated positive by the caller
     double cost = half_ssr(r);
     double lambda = 1e-3;
     for (; out.iterations < max_iterations && !out.converged; ++out.iterations) {
         if (cost <= 1e-30) { out.converged = true; break; }
-        const Mat J = jacobian(rows, theta);
+        const Mat J = jacobian(rows, theta, fit);
         Vec g(np, 0.0);
         Mat A(np, Vec(np, 0.0));
         for (std::size_t i = 0; i < rows.size(); ++i)
@@ -179,7 +220,7 @@ struct LmOutcome {
                     rel_step = std::max(rel_step, std::abs(trial[k] - theta[k]) / scale_of(theta[k], params[k]));
                 }
                 Vec rt;
-                if (residuals(rows, trial, rt)) {
+                if (residuals(rows, trial, rt, fit)) {
                     const double ct = half_ssr(rt);
                     if (ct < cost) {
                         const double decrease = cost - ct;
@@ -207,6 +248,8 @@ struct LmOutcome {
 }  // namespace
 
 double predicted_speedup(const CalibrationRun& run, const CostModel& model) {
+    if (model.execution.warp() && run.ref_warps && run.obb_warps)
+        return run.ref_warps->price(model).cycles() / run.obb_warps->price(model).cycles();
     return price(run.ref, model).total_cycles / price(run.obb, model).total_cycles;
 }
 
@@ -237,10 +280,18 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
         theta0[k] = std::clamp(v, params[k].lo, params[k].hi);
     }
 
+    const FitContext fit{start, params, owner};
+    const bool warp = start.execution.warp();
     std::vector<Row> rows;  // runs with weight > 0 only
     for (const CalibrationRun& run : runs) {
+        if (warp && !(run.ref_warps && run.obb_warps))
+            throw std::invalid_argument("calibrate: run '" + run.label + "': the start preset " + start.name +
+                                        " is a warp model but the run kept no waves (list a warp preset in the run's costs)");
         Row row{make_side(run.ref, start, params, owner), make_side(run.obb, start, params, owner),
-                std::log(run.target_speedup), std::sqrt(run.weight)};
+                std::log(run.target_speedup), std::sqrt(run.weight), warp ? &run : nullptr};
+        std::vector<Row> one{row};
+        relinearize(one, theta0, fit);
+        row = one.front();
         if (!(cycles(row.ref, theta0) > 0.0) || !(cycles(row.obb, theta0) > 0.0))
             throw std::invalid_argument("calibrate: run '" + run.label +
                                         "': zero cycles at the start point (no counts, or all costs zero)");
@@ -250,7 +301,7 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
     CalibrationResult res;
     res.observations = static_cast<int>(rows.size());
     const LmOutcome lm = rows.empty() ? LmOutcome{theta0, 0, true}
-                                      : levenberg_marquardt(rows, theta0, params, options.max_iterations);
+                                      : levenberg_marquardt(rows, theta0, params, options.max_iterations, fit);
     const Vec& theta = lm.theta;
     res.iterations = lm.iterations;
     res.converged = lm.converged;
@@ -282,7 +333,7 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
     res.rms_log_error = sum_w > 0 ? std::sqrt(ssr / sum_w) : 0.0;
 
     // Error analysis on the scaled Jacobian J S, S = diag(scale of each parameter).
-    const Mat J = rows.empty() ? Mat{} : jacobian(rows, theta);
+    const Mat J = rows.empty() ? Mat{} : jacobian(rows, theta, fit);
     for (std::size_t k = 0; k < np; ++k) {
         ParameterFit pf;
         pf.events = params[k].events, pf.tie = params[k].tie;
@@ -331,7 +382,7 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
     for (std::size_t k : cand) res.free_parameters += res.parameters[k].unidentifiable ? 0 : 1;
     res.degrees_of_freedom = res.observations - res.free_parameters;
     Vec rfin;
-    const double sigma2 = res.degrees_of_freedom > 0 && residuals(rows, theta, rfin)
+    const double sigma2 = res.degrees_of_freedom > 0 && residuals(rows, theta, rfin, fit)
                               ? 2.0 * half_ssr(rfin) / res.degrees_of_freedom
                               : std::numeric_limits<double>::quiet_NaN();
     for (std::size_t a = 0; a < cand.size(); ++a) {

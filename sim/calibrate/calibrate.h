@@ -13,6 +13,9 @@
 
 #include "core/sinks.h"
 #include "sim/hardware/cost_model.h"
+#include "sim/hardware/warp_trace.h"
+
+#include <memory>
 
 #include <string>
 #include <vector>
@@ -22,8 +25,11 @@ namespace rtc {
 // One run: the counts of both methods on the same scene and rays.
 struct CalibrationRun {
     std::string label;
-    EventTotals ref;
-    EventTotals obb;
+    EventTotals ref;  // the baseline's counts (per-ray model)
+    EventTotals obb;  // the calibrated method's
+    // The traced waves (SIMT model): when both are set and the model is a
+    // warp model, cycles come from re-pricing them (per-ray counts otherwise).
+    std::shared_ptr<const WarpTrace> ref_warps, obb_warps;
     double target_speedup = 1.0;  // cycles(ref) / cycles(obb) to reproduce; > 0
     double weight = 1.0;          // >= 0
 };

@@ -1,10 +1,29 @@
 #include "sim/hardware/warp_trace.h"
 
 #include <algorithm>
+#include <array>
+#include <stdexcept>
 
 namespace rtc {
 
 namespace {
+
+// The events a lane record keeps: every event outside intersection programs.
+constexpr std::size_t count_lane_events() {
+    std::size_t n = 0;
+    for (const EventUnit u : kEventUnits) n += u != EventUnit::Program;
+    return n;
+}
+constexpr std::size_t kLaneEvents = count_lane_events();
+
+constexpr std::array<std::uint8_t, kLaneEvents> lane_event_index() {
+    std::array<std::uint8_t, kLaneEvents> idx{};
+    std::size_t k = 0;
+    for (std::size_t e = 0; e < kEventCount; ++e)
+        if (kEventUnits[e] != EventUnit::Program) idx[k++] = static_cast<std::uint8_t>(e);
+    return idx;
+}
+constexpr auto kLaneEventIndex = lane_event_index();
 
 std::uint64_t hash_counts(const RayCounts& c) {
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the counts
@@ -14,30 +33,32 @@ std::uint64_t hash_counts(const RayCounts& c) {
 
 }  // namespace
 
-std::uint32_t WarpTrace::profile_id(const RayCounts& c) {
+std::uint16_t WarpTrace::profile_id(const RayCounts& c) {
     const std::uint64_t h = hash_counts(c);
     const auto [lo, hi] = profile_index_.equal_range(h);
     for (auto it = lo; it != hi; ++it)
-        if (profiles_[it->second].n == c.n) return it->second;
-    const auto id = static_cast<std::uint32_t>(profiles_.size());
+        if (profiles_[it->second].n == c.n) return static_cast<std::uint16_t>(it->second);
+    if (profiles_.size() > 0xFFFF)
+        throw std::length_error("warp trace: more than 65,536 distinct intersection-program call profiles");
+    const auto id = static_cast<std::uint16_t>(profiles_.size());
     profiles_.push_back(c);
     profile_index_.emplace(h, id);
     return id;
 }
 
 void WarpTrace::append(const WaveWork& wave) {
-    wave_first_lane_.push_back(static_cast<std::uint32_t>(lane_counts_.size()));
+    wave_first_lane_.push_back(static_cast<std::uint32_t>(lanes()));
     for (const LaneWork& l : wave.lanes) {
-        lane_counts_.push_back(l.counts);
+        for (const std::uint8_t e : kLaneEventIndex) lane_counts_.push_back(l.counts.n[e]);
         lane_first_call_.push_back(static_cast<std::uint32_t>(call_profile_.size()));
         for (std::uint32_t k = 0; k < l.calls; ++k) call_profile_.push_back(profile_id(wave.calls[l.first_call + k]));
     }
 }
 
 void WarpTrace::append(const WarpTrace& o) {
-    const auto lane_base = static_cast<std::uint32_t>(lane_counts_.size());
+    const auto lane_base = static_cast<std::uint32_t>(lanes());
     const auto call_base = static_cast<std::uint32_t>(call_profile_.size());
-    std::vector<std::uint32_t> remap(o.profiles_.size());
+    std::vector<std::uint16_t> remap(o.profiles_.size());
     for (std::size_t p = 0; p < o.profiles_.size(); ++p) remap[p] = profile_id(o.profiles_[p]);
     for (const std::uint32_t w : o.wave_first_lane_) wave_first_lane_.push_back(lane_base + w);
     lane_counts_.insert(lane_counts_.end(), o.lane_counts_.begin(), o.lane_counts_.end());
@@ -46,26 +67,75 @@ void WarpTrace::append(const WarpTrace& o) {
 }
 
 std::size_t WarpTrace::memory_bytes() const {
-    return wave_first_lane_.size() * 4 + lane_counts_.size() * sizeof(RayCounts) + lane_first_call_.size() * 4 +
-           call_profile_.size() * 4 + profiles_.size() * (sizeof(RayCounts) + 24);
+    return wave_first_lane_.size() * 4 + lane_counts_.size() * 4 + lane_first_call_.size() * 4 +
+           call_profile_.size() * 2 + profiles_.size() * (sizeof(RayCounts) + 24);
 }
 
-WarpTotals WarpTrace::price(const CostModel& model, EffectiveCounts* effective) const {
+// The same arithmetic as price_wave (warp_pricing.cpp), straight from the
+// compact arrays: each profile is priced once per model, each lane from its
+// packed counts. Tests check that both agree.
+WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
+    std::vector<double> profile_price(profiles_.size());
+    for (std::size_t p = 0; p < profiles_.size(); ++p)
+        for (std::size_t e = 0; e < kEventCount; ++e)
+            if (kEventUnits[e] == EventUnit::Program) profile_price[p] += profiles_[p].n[e] * m.cycles[e];
+    double handoff_cost = 0.0;
+    for (std::size_t e = 0; e < kEventCount; ++e)
+        if (kEventUnits[e] == EventUnit::HandOff) handoff_cost += m.cycles[e];
+    const double parallel = std::max(1.0, m.execution.rt_parallel_lanes);
     WarpTotals totals;
-    WaveWork wave;
-    const std::size_t nw = wave_first_lane_.size();
+    const std::size_t nw = wave_first_lane_.size(), nl = lanes();
     for (std::size_t w = 0; w < nw; ++w) {
-        wave.clear();
-        const std::size_t l0 = wave_first_lane_[w];
-        const std::size_t l1 = w + 1 < nw ? wave_first_lane_[w + 1] : lane_counts_.size();
+        const std::size_t l0 = wave_first_lane_[w], l1 = w + 1 < nw ? wave_first_lane_[w + 1] : nl;
+        WavePrice p;
+        std::size_t shader_lane = l0, rt_lane = l0;
+        double rt_max = -1.0;
+        std::uint32_t rounds = 0;
         for (std::size_t l = l0; l < l1; ++l) {
-            const std::size_t c0 = lane_first_call_[l];
-            const std::size_t c1 = l + 1 < lane_first_call_.size() ? lane_first_call_[l + 1] : call_profile_.size();
-            wave.lanes.push_back({lane_counts_[l], static_cast<std::uint32_t>(wave.calls.size()),
-                                  static_cast<std::uint32_t>(c1 - c0), 0});
-            for (std::size_t c = c0; c < c1; ++c) wave.calls.push_back(profiles_[call_profile_[c]]);
+            double shader = 0.0, rt = 0.0;
+            for (std::size_t k = 0; k < kLaneEvents; ++k) {
+                const std::size_t e = kLaneEventIndex[k];
+                const double c = lane_counts_[l * kLaneEvents + k] * m.cycles[e];
+                if (kEventUnits[e] == EventUnit::Shader) shader += c;
+                else if (kEventUnits[e] == EventUnit::RtUnit) rt += c;
+            }
+            if (shader > p.shader) p.shader = shader, shader_lane = l;
+            p.rt_lane_sum += rt;
+            if (rt > rt_max) rt_max = rt, rt_lane = l;
+            rounds = std::max(rounds, calls_of(l));
         }
-        totals.add(price_wave(wave, model, effective), wave.lanes.size());
+        const bool slowest_lane_bounds = rt_max >= p.rt_lane_sum / parallel;
+        p.rt = slowest_lane_bounds ? rt_max : p.rt_lane_sum / parallel;
+        p.rounds = rounds;
+        p.handoff = rounds * handoff_cost;
+        for (std::uint32_t r = 0; r < rounds; ++r) {
+            double worst = -1.0;
+            std::uint16_t worst_profile = 0;
+            for (std::size_t l = l0; l < l1; ++l) {
+                if (r >= calls_of(l)) continue;
+                ++p.active_lane_rounds;
+                const std::uint16_t prof = call_profile_[lane_first_call_[l] + r];
+                if (profile_price[prof] > worst) worst = profile_price[prof], worst_profile = prof;
+            }
+            p.programs += worst;
+            if (eff)
+                for (std::size_t e = 0; e < kEventCount; ++e)
+                    if (kEventUnits[e] == EventUnit::Program) (*eff)[e] += profiles_[worst_profile].n[e];
+        }
+        if (eff) {
+            for (std::size_t k = 0; k < kLaneEvents; ++k) {
+                const std::size_t e = kLaneEventIndex[k];
+                if (kEventUnits[e] == EventUnit::Shader) (*eff)[e] += lane_counts_[shader_lane * kLaneEvents + k];
+                if (kEventUnits[e] == EventUnit::HandOff) (*eff)[e] += rounds;
+                if (kEventUnits[e] != EventUnit::RtUnit) continue;
+                if (slowest_lane_bounds) {
+                    (*eff)[e] += lane_counts_[rt_lane * kLaneEvents + k];
+                } else {
+                    for (std::size_t l = l0; l < l1; ++l) (*eff)[e] += lane_counts_[l * kLaneEvents + k] / parallel;
+                }
+            }
+        }
+        totals.add(p, l1 - l0);
     }
     return totals;
 }

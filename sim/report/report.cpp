@@ -54,10 +54,28 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
         nlohmann::ordered_json breakdown;
         for (std::size_t i = 0; i < kEventCount; ++i)
             if (pr.by_event[i] > 0.0) breakdown[std::string(kEventNames[i])] = pr.by_event[i];
-        cycles[run.costs[p].name] = {
+        nlohmann::ordered_json entry = {
             {"total", pr.total_cycles},
             {"per_ray", rays ? pr.total_cycles / static_cast<double>(rays) : 0.0},
             {"breakdown", breakdown}};
+        if (pr.execution == ExecutionKind::Warp) {
+            // The breakdown above is the per-ray sum's; the warp model's is by unit.
+            const WarpTotals& w = m.warp[p];
+            const int width = run.costs[p].execution.warp_width;
+            const double waves = static_cast<double>(std::max<std::uint64_t>(w.waves, 1));
+            entry["execution"] = "warp";
+            entry["per_ray_model_total"] = pr.per_ray_cycles;
+            entry["warp"] = {{"waves", w.waves},
+                             {"cycles_per_wave", w.cycles() / waves},
+                             {"rounds_per_wave", static_cast<double>(w.rounds) / waves},
+                             {"active_lanes_per_wave", static_cast<double>(w.lanes) / waves},
+                             {"simt_efficiency", w.simt_efficiency(width)},
+                             {"rt_simt_efficiency", w.rt_efficiency(width)},
+                             {"occupancy", w.occupancy(width)},
+                             {"breakdown", {{"shader", w.shader}, {"rt_unit", w.rt},
+                                            {"hand_off", w.handoff}, {"programs", w.programs}}}};
+        }
+        cycles[run.costs[p].name] = entry;
     }
     j["cycles"] = cycles;
     const MemoryBreakdown& mem = m.memory;

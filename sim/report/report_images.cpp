@@ -26,6 +26,24 @@ std::string path_in(const std::string& dir, const std::string& file) {
     return (std::filesystem::path(dir) / file).string();
 }
 
+// SIMT efficiency of the intersection-program rounds of each pixel's warps:
+// active lanes per round over the warp width (1: every lane had a candidate).
+void write_simt_map(const MethodRun& m, const RunResult& run, const std::string& dir) {
+    const FrameResult& f = m.frame;
+    ScalarField eff{f.width, f.height, std::vector<float>(f.pixel_simt_slots.size())};
+    for (std::size_t i = 0; i < eff.values.size(); ++i)
+        eff.values[i] = f.pixel_simt_slots[i] > 0.0f ? f.pixel_simt_active[i] / f.pixel_simt_slots[i]
+                                                     : std::numeric_limits<float>::quiet_NaN();
+    HeatmapOptions o;
+    o.title = m.method + ": SIMT efficiency of IS rounds";
+    o.bar_label = "active lanes / W";
+    o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
+                "\nper pixel: over its warps' rounds; grey: no IS round";
+    o.colormap = Colormap::Viridis;
+    write_png(render_heatmap(eff, HeatmapScale{0.0, 1.0, ScaleKind::Linear}, o).image,
+              path_in(dir, "heat_simt_" + m.method + ".png"));
+}
+
 }  // namespace
 
 void write_images(const RunResult& run, const std::string& dir) {
@@ -37,11 +55,16 @@ void write_images(const RunResult& run, const std::string& dir) {
     write_png(tonemap_to_srgb(first.radiance, first.width, first.height), path_in(dir, "render.png"));
 
     const CostModel& cost = run.costs.front();
+    // Under a warp preset a pixel's cycles are its share of its waves'.
+    const bool warp = cost.execution.warp();
     std::vector<ScalarField> cycles, calls;
     for (const MethodRun* m : traced) {
-        cycles.push_back(pixel_field(m->frame, [&](const RayCounts& c) {
-            return static_cast<float>(price_cycles(c, cost));
-        }));
+        if (warp)
+            cycles.push_back({m->frame.width, m->frame.height, m->frame.pixel_warp_cycles});
+        else
+            cycles.push_back(pixel_field(m->frame, [&](const RayCounts& c) {
+                return static_cast<float>(price_cycles(c, cost));
+            }));
         calls.push_back(pixel_field(m->frame, [](const RayCounts& c) {
             return static_cast<float>(c[Event::IsCall]);
         }));
@@ -57,7 +80,7 @@ void write_images(const RunResult& run, const std::string& dir) {
     for (std::size_t i = 0; i < traced.size(); ++i) {
         const std::string& name = traced[i]->method;
         HeatmapOptions o;
-        o.title = name + ": cycles per pixel (" + cost.name + ")";
+        o.title = name + ": cycles per pixel (" + cost.name + (warp ? ", warp model)" : ")");
         o.bar_label = "cycles / pixel";
         o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
                     "\n" + spp + ", common scale across methods";
@@ -67,6 +90,7 @@ void write_images(const RunResult& run, const std::string& dir) {
         o.bar_label = "IS calls / pixel";
         o.colormap = Colormap::Viridis;
         write_png(render_heatmap(calls[i], call_scale, o).image, path_in(dir, "heat_is_calls_" + name + ".png"));
+        if (warp) write_simt_map(*traced[i], run, dir);
     }
     // One ratio map per method against the baseline.
     const MethodRun* base = run.baseline();
