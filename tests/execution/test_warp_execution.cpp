@@ -1,0 +1,166 @@
+// The SIMT execution model: a wave priced by hand; frames traced in warps
+// count exactly what the per-ray model counts and hit the same primitives;
+// the wave records re-price to the figures computed while tracing; effective
+// counts reproduce the cycles linearly; nothing depends on the thread count.
+#include "scenes/bundle.h"
+#include "sim/hardware/warp_trace.h"
+#include "sim/methods/method.h"
+#include "sim/workload/camera.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace rtc;
+
+namespace {
+
+CostModel test_model(double rt_parallel) {
+    CostModel m;
+    m.name = "test";
+    for (std::size_t e = 0; e < kEventCount; ++e) m.cycles[e] = 1.0 + static_cast<double>(e);
+    m[Event::Ray] = 100;
+    m[Event::BlasBoxTest] = 2;
+    m[Event::ContextSwitch] = 50;
+    m[Event::IsCall] = 0;
+    m[Event::IsCapsule] = 10;
+    m[Event::ReportedHit] = 5;
+    m.execution.kind = ExecutionKind::Warp;
+    m.execution.rt_parallel_lanes = rt_parallel;
+    return m;
+}
+
+RayCounts counts_of(std::initializer_list<std::pair<Event, std::uint32_t>> l) {
+    RayCounts c;
+    for (const auto& [e, n] : l) c.n[static_cast<std::size_t>(e)] = n;
+    return c;
+}
+
+struct TestFrame {
+    Geometry geometry;
+    RayWorkload workload;
+};
+
+TestFrame tilted_bundle(int width, int height) {
+    BundleDesc d;
+    d.count = 200;
+    d.radius = 0.004f;
+    d.tilt_deg = 30.0f;
+    TestFrame f;
+    f.geometry = make_geometry(make_bundle(d), PrimitiveKind::Capsule, 1);
+    f.workload.camera = auto_frame(geometry_bounds(f.geometry), 45.0f, width, height);
+    f.workload.path.spp = 2;
+    f.workload.path.bounces = 2;
+    return f;
+}
+
+FrameResult run(const BuiltMethod& m, const TestFrame& f, const ExecutionModel* warp,
+                std::vector<const CostModel*> presets, unsigned threads, bool record = false) {
+    FrameOptions o;
+    o.threads = threads;
+    o.progress = false;
+    o.record_hits = true;
+    o.warp = warp;
+    o.warp_presets = std::move(presets);
+    o.record_warps = record;
+    return m.run(f.geometry, f.workload, TraceOptions{}, o);
+}
+
+}  // namespace
+
+TEST_CASE("warp pricing: a two-lane wave by hand") {
+    const CostModel m = test_model(/*rt_parallel=*/1.0);  // RT work sums over lanes
+    WaveWork w;
+    // Lane 0: 10 BLAS box tests, two calls (a miss, then a hit); lane 1: 4 box tests, one miss.
+    w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasBoxTest, 10}, {Event::ContextSwitch, 2}}), 0, 2, 0});
+    w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasBoxTest, 4}, {Event::ContextSwitch, 1}}), 2, 1, 1});
+    const RayCounts miss = counts_of({{Event::IsCall, 1}, {Event::IsCapsule, 1}});
+    const RayCounts hit = counts_of({{Event::IsCall, 1}, {Event::IsCapsule, 1}, {Event::ReportedHit, 1}});
+    w.calls = {miss, hit, miss};
+    EffectiveCounts eff{};
+    const WavePrice p = price_wave(w, m, &eff);
+    CHECK(p.shader == 100.0);          // lockstep: once
+    CHECK(p.rt == 2.0 * (10 + 4));     // P = 1: the sum
+    CHECK(p.rounds == 2);
+    CHECK(p.handoff == 2 * 50.0);      // one hand-off per round
+    CHECK(p.programs == 10.0 + 15.0);  // round 0: max(10, 10); round 1: the hit alone
+    CHECK(p.active_lane_rounds == 3);
+    double linear = 0.0;
+    for (std::size_t e = 0; e < kEventCount; ++e) linear += eff[e] * m.cycles[e];
+    CHECK(linear == doctest::Approx(p.total()));
+    // Latency-bound RT unit: the slowest lane alone.
+    CHECK(price_wave(w, test_model(32.0)).rt == 20.0);
+    CHECK(price_wave(w, test_model(2.0)).rt == 20.0);  // max(20, 28 / 2)
+    CHECK(price_wave(w, test_model(1.25)).rt == doctest::Approx(28.0 / 1.25));  // sum / P bounds
+}
+
+TEST_CASE("warp execution: same counts and hits as per ray; records re-price exactly; thread-count independent") {
+    const TestFrame f = tilted_bundle(40, 28);  // 5 x 7 tiles of 8 x 4
+    MethodOptions mo;
+    const CostModel a = test_model(32.0), b = test_model(4.0);
+    ExecutionModel grouping = a.execution;
+    for (const char* name : {"ref", "obb"}) {
+        CAPTURE(name);
+        const auto method = find_method(name)->build(f.geometry, mo);
+        const FrameResult per_ray = run(*method, f, nullptr, {}, 2);
+        const FrameResult warp1 = run(*method, f, &grouping, {&a, &b}, 1, true);
+        const FrameResult warp2 = run(*method, f, &grouping, {&a, &b}, 2);
+        CHECK(warp1.totals == per_ray.totals);
+        CHECK(warp1.rays_traced == per_ray.rays_traced);
+        REQUIRE(warp1.hits.size() == per_ray.hits.size());
+        bool same_hits = true;
+        for (std::size_t i = 0; i < per_ray.hits.size(); ++i)
+            same_hits = same_hits && warp1.hits[i].prim == per_ray.hits[i].prim && warp1.hits[i].t == per_ray.hits[i].t;
+        CHECK(same_hits);
+        CHECK(warp1.radiance == per_ray.radiance);
+        // Threads change nothing.
+        REQUIRE(warp2.warp.size() == 2);
+        CHECK(warp2.warp[0].cycles() == warp1.warp[0].cycles());
+        CHECK(warp2.warp[1].cycles() == warp1.warp[1].cycles());
+        CHECK(warp2.pixel_warp_cycles == warp1.pixel_warp_cycles);
+        CHECK(warp2.pixel_simt_active == warp1.pixel_simt_active);
+        // One wave per tile, sample and bounce that had rays.
+        CHECK(warp1.warp[0].waves >= 35u * 2u);
+        CHECK(warp1.warp[0].lanes == warp1.rays_traced);
+        // Re-pricing the records gives what was priced while tracing.
+        CHECK(warp1.warp_trace.waves() == warp1.warp[0].waves);
+        for (const CostModel* m : {&a, &b}) {
+            EffectiveCounts eff{};
+            const WarpTotals again = warp1.warp_trace.price(*m, &eff);
+            const WarpTotals& live = warp1.warp[m == &a ? 0 : 1];
+            CHECK(again.cycles() == doctest::Approx(live.cycles()).epsilon(1e-12));
+            CHECK(again.rounds == live.rounds);
+            CHECK(again.active_lane_rounds == live.active_lane_rounds);
+            double linear = 0.0;
+            for (std::size_t e = 0; e < kEventCount; ++e) linear += eff[e] * m->cycles[e];
+            CHECK(linear == doctest::Approx(again.cycles()).epsilon(1e-9));
+        }
+        // Warps pay their slowest lane: never less than the per-ray sum over W lanes in parallel.
+        CHECK(warp1.warp[0].simt_efficiency(32) <= 1.0);
+        CHECK(warp1.warp[0].simt_efficiency(32) > 0.0);
+        double pixel_sum = 0.0;
+        for (const float c : warp1.pixel_warp_cycles) pixel_sum += c;
+        CHECK(pixel_sum == doctest::Approx(warp1.warp[0].cycles()).epsilon(1e-4));
+    }
+}
+
+TEST_CASE("warp execution: ray lists run W consecutive rays per wave") {
+    const TestFrame f = tilted_bundle(16, 16);
+    const auto method = find_method("ref")->build(f.geometry, MethodOptions{});
+    // The camera frame's rays, replayed as a ray list.
+    FrameOptions o;
+    o.progress = false;
+    o.record_rays = true;
+    const FrameResult cam = method->run(f.geometry, f.workload, TraceOptions{}, o);
+    RayWorkload list;
+    list.from_camera = false;
+    list.rays = cam.rays;
+    const CostModel m = test_model(8.0);
+    o.record_rays = false;
+    o.warp = &m.execution;
+    o.warp_presets = {&m};
+    const FrameResult r = method->run(f.geometry, list, TraceOptions{}, o);
+    CHECK(r.totals == cam.totals);
+    CHECK(r.warp[0].waves == (cam.rays.size() + 31) / 32);
+    CHECK(r.warp[0].lanes == cam.rays.size());
+}
