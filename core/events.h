@@ -27,7 +27,8 @@ enum class Event : std::uint8_t {
     IsCylinder,          // ... the cylinder program (base cost)
     IsCapsule,           // ... the capsule program
     IsLink,              // ... the link (cone stump + spheres) program
-    IsPhantom,           // ... the phantom curve program (base cost)
+    IsPhantom,           // ... the phantom curve program (counts calls): entry, curve fetch
+    PhantomSetup,        // the ray-centric frame: direction basis, 4 control points transformed
     PhantomIteration,    // one iteration of the phantom root finder
     PhantomEarlyOut,     // the phantom bounding-cylinder early-out test ran
     PhantomEarlyReject,  // ... and rejected the ray before iterating
@@ -42,8 +43,8 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "ray",           "tlas_node_visit",   "tlas_box_test",        "instance_transform",
     "blas_node_visit", "blas_box_test",   "triangle_test",        "context_switch",
     "is_call",       "is_cylinder",       "is_capsule",           "is_link",
-    "is_phantom",    "phantom_iteration", "phantom_early_out",    "phantom_early_reject",
-    "phantom_bracket_test", "reported_hit",
+    "is_phantom",    "phantom_setup",     "phantom_iteration",    "phantom_early_out",
+    "phantom_early_reject", "phantom_bracket_test", "reported_hit",
 };
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
