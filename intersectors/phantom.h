@@ -1,7 +1,8 @@
 // The bracketed phantom program: this project's variant of Reshetov & Luebke
 // 2018, "Phantom Ray-Hair Intersector" (Proc. ACM CGIT 1(2), HPG 2018), for
 // the cubic Bezier swept by a sphere whose radius is the cubic Bezier of the
-// four radius values (phantom_curve.h).
+// four radius values (phantom_curve.h). The paper's own program is in
+// phantom_reshetov.h; `intersect` runs the one PhantomOptions selects.
 //
 // Derivation. Work in the ray-centric frame (RCC): origin at the ray origin,
 // z along the unit ray direction, x and y from a Duff et al. basis, so the ray
@@ -47,6 +48,7 @@
 #include "intersectors/hit.h"
 #include "intersectors/kinds.h"
 #include "intersectors/phantom_curve.h"
+#include "intersectors/phantom_reshetov.h"
 
 #include <algorithm>
 #include <array>
@@ -206,9 +208,11 @@ inline bool capsule_z(const DVec3& a, const DVec3& b, double R, double& lo, doub
 
 }  // namespace detail
 
+// Runs the program `opt` selects (see phantom_curve.h).
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const PhantomCurve& pc, const Ray& ray, Sink& sink,
                                            const PhantomOptions& opt = {}) {
+    if (opt.program == PhantomProgram::Paper) return intersect_reshetov(pc, ray, sink, opt);
     sink.on(Event::IsPhantom);
     if (!is_finite(pc) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
     const double rmax = max_radius(pc);

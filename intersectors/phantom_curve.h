@@ -1,8 +1,15 @@
 // The phantom curve primitive (Reshetov & Luebke 2018, "Phantom Ray-Hair
 // Intersector", Proc. ACM CGIT 1(2), HPG 2018): a cubic Bezier with a radius
 // that is the cubic Bezier of four radius values. What both intersection
-// programs share: the curve, the options, its AABB and the double-precision
-// ray-centric frame.
+// programs share: the curve, the options that pick a program, its AABB and
+// the double-precision ray-centric frame.
+//
+// Two programs intersect it (PhantomOptions::program):
+//   Bracketed (phantom.h): this project's root search bracketed by sub-curve
+//     capsules, nearest first, which finds the nearest crossing of the sphere
+//     sweep (about 4-5 iterations per call).
+//   Paper (phantom_reshetov.h): Reshetov & Luebke's iteration as published,
+//     with the capped bounding cylinder early out Wald et al. 2020 used.
 #pragma once
 
 #include "core/enum_names.h"
@@ -22,9 +29,21 @@ struct PhantomCurve {
     std::array<float, 4> radius{};   // radius as a cubic Bezier in the same parameter
 };
 
+enum class PhantomProgram : std::uint8_t { Bracketed, Paper };
+inline constexpr std::array<std::string_view, 2> kPhantomProgramNames = {"bracketed", "paper"};
+
+[[nodiscard]] constexpr std::string_view phantom_program_name(PhantomProgram p) {
+    return kPhantomProgramNames[static_cast<std::size_t>(p)];
+}
+[[nodiscard]] constexpr std::optional<PhantomProgram> phantom_program_from_name(std::string_view s) {
+    return enum_from_name<PhantomProgram>(kPhantomProgramNames, s);
+}
+
 struct PhantomOptions {
     bool early_out = true;    // the program's bounding-cylinder test before iterating
-    int max_iterations = 24;  // per search start
+    int max_iterations = 24;  // bracketed: per search start
+    PhantomProgram program = PhantomProgram::Bracketed;
+    int paper_max_iterations = 40;  // paper: per curve end (Reshetov & Luebke's cap)
 };
 
 [[nodiscard]] inline bool is_finite(const PhantomCurve& c) {

@@ -79,9 +79,10 @@ MethodOptions options(int width) {
 
 template <TraversalMode Mode = TraversalMode::Closest>
 TraceHit trace_any(const MethodAccel& m, const Geometry& g, const Ray& ray, CountingSink& sink,
-                   IsSchedule schedule) {
+                   IsSchedule schedule, PhantomProgram program = PhantomProgram::Bracketed) {
     TraceOptions o;
     o.schedule = schedule;
+    o.phantom.program = program;
     TraceScratch scratch;
     return std::visit(
         [&](const auto& prims) {
@@ -119,9 +120,13 @@ TEST_CASE("methods: ref and obb return the same closest hit for every ray") {
                 for (int i = 0; i < 1500; ++i) {
                     const Ray ray = scene_ray(rng);
                     for (const IsSchedule schedule : {IsSchedule::Immediate, IsSchedule::Deferred}) {
+                        // The paper's phantom program too (the bracketed one is the default).
+                        const auto program = kind == PrimitiveKind::Phantom && i % 2 == 1
+                                                 ? PhantomProgram::Paper
+                                                 : PhantomProgram::Bracketed;
                         CountingSink sr, so;
-                        const TraceHit a = trace_any(ref, g, ray, sr, schedule);
-                        const TraceHit b = trace_any(obb, g, ray, so, schedule);
+                        const TraceHit a = trace_any(ref, g, ray, sr, schedule, program);
+                        const TraceHit b = trace_any(obb, g, ray, so, schedule, program);
                         const bool same = a.geom == b.geom && a.prim == b.prim &&
                                           std::bit_cast<std::uint32_t>(a.t) == std::bit_cast<std::uint32_t>(b.t);
                         mismatches += !same;
