@@ -1,5 +1,7 @@
 // The scene block of a config: each type, path resolution, defaults, and the
 // errors (unknown keys, bad values, missing radius) naming file and JSON path.
+#include "scenes/stats.h"
+#include "sim/json_file.h"
 #include "sim/scene_config.h"
 
 #include <doctest/doctest.h>
@@ -58,6 +60,23 @@ TEST_CASE("scene config: procedural hair") {
     CHECK(glm::length(Vec3(root.x, root.y, 0) - Vec3(1, 2, 0)) <= 0.05f + 1e-6f);
     CHECK(root.z == doctest::Approx(3.0f));
     CHECK(tip.z - root.z == doctest::Approx(1.0f).epsilon(1e-5));
+}
+
+TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's segment counts") {
+    const std::string file = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/curly_table1.json";
+    const json config = parse_json_text(read_text_file(file), file);
+    const json& scenes = config.at("sweep").at("scene");
+    REQUIRE(scenes.size() == 2);
+    const std::size_t segments[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Scene s = load_scene(JsonReader(scenes[i], file, "/sweep/scene/" + std::to_string(i)));
+        CAPTURE(s.name);
+        CHECK(s.strands.segment_count() == segments[i]);
+        CHECK(s.mesh.triangles.empty());
+        const SceneStats st = compute_stats(s);
+        CHECK(st.mean_radius == doctest::Approx(3e-5).epsilon(1e-3));
+        CHECK(st.mean_length_over_radius > 150.0);
+    }
 }
 
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
