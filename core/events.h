@@ -27,11 +27,15 @@ enum class Event : std::uint8_t {
     IsCylinder,          // ... the cylinder program (base cost)
     IsCapsule,           // ... the capsule program
     IsLink,              // ... the link (cone stump + spheres) program
-    IsPhantom,           // ... the phantom curve program (base cost)
-    PhantomIteration,    // one iteration of the phantom root finder
-    PhantomEarlyOut,     // the phantom bounding-cylinder early-out test ran
+    IsPhantom,           // ... a phantom curve program (either; counts calls): entry, curve fetch
+    PhantomSetup,        // the ray-centric frame: direction basis, 4 control points transformed
+    PhantomIteration,    // bracketed program: one iteration of its root finder
+    PhantomEarlyOut,     // bracketed program: its bounding-cylinder early-out test ran
     PhantomEarlyReject,  // ... and rejected the ray before iterating
-    PhantomBracketTest,  // one ray/capsule test bounding a sub-curve (root bracketing)
+    PhantomBracketTest,  // bracketed program: one ray/capsule test bounding a sub-curve
+    PhantomCylinderTest, // paper program: the capped bounding-cylinder early out (world space)
+    PhantomPaperIteration,  // paper program: one Reshetov & Luebke iteration (tangent cone)
+    PhantomSecondEnd,    // paper program: the first end's search failed, restart at the other
     ReportedHit,         // an intersection program reported a hit
     Count
 };
@@ -42,8 +46,9 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "ray",           "tlas_node_visit",   "tlas_box_test",        "instance_transform",
     "blas_node_visit", "blas_box_test",   "triangle_test",        "context_switch",
     "is_call",       "is_cylinder",       "is_capsule",           "is_link",
-    "is_phantom",    "phantom_iteration", "phantom_early_out",    "phantom_early_reject",
-    "phantom_bracket_test", "reported_hit",
+    "is_phantom",    "phantom_setup",     "phantom_iteration",    "phantom_early_out",
+    "phantom_early_reject", "phantom_bracket_test", "phantom_cylinder_test",
+    "phantom_paper_iteration", "phantom_second_end", "reported_hit",
 };
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
@@ -71,10 +76,14 @@ inline constexpr EventUnit kEventUnits[] = {
     EventUnit::Program,  // is_capsule
     EventUnit::Program,  // is_link
     EventUnit::Program,  // is_phantom
+    EventUnit::Program,  // phantom_setup
     EventUnit::Program,  // phantom_iteration
     EventUnit::Program,  // phantom_early_out
     EventUnit::Program,  // phantom_early_reject
     EventUnit::Program,  // phantom_bracket_test
+    EventUnit::Program,  // phantom_cylinder_test
+    EventUnit::Program,  // phantom_paper_iteration
+    EventUnit::Program,  // phantom_second_end
     EventUnit::Program,  // reported_hit
 };
 

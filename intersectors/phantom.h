@@ -1,6 +1,8 @@
-// Phantom curve (Reshetov & Luebke 2018, "Phantom Ray-Hair Intersector",
-// Proc. ACM CGIT 1(2), HPG 2018): a cubic Bezier swept by a sphere whose
-// radius is the cubic Bezier of the four radius values.
+// The bracketed phantom program: this project's variant of Reshetov & Luebke
+// 2018, "Phantom Ray-Hair Intersector" (Proc. ACM CGIT 1(2), HPG 2018), for
+// the cubic Bezier swept by a sphere whose radius is the cubic Bezier of the
+// four radius values (phantom_curve.h). The paper's own program is in
+// phantom_reshetov.h; `intersect` runs the one PhantomOptions selects.
 //
 // Derivation. Work in the ray-centric frame (RCC): origin at the ray origin,
 // z along the unit ray direction, x and y from a Duff et al. basis, so the ray
@@ -45,6 +47,8 @@
 #include "intersectors/frame.h"
 #include "intersectors/hit.h"
 #include "intersectors/kinds.h"
+#include "intersectors/phantom_curve.h"
+#include "intersectors/phantom_reshetov.h"
 
 #include <algorithm>
 #include <array>
@@ -53,48 +57,10 @@
 
 namespace rtc {
 
-struct PhantomCurve {
-    std::array<Vec3, 4> cp{};        // Bezier control points
-    std::array<float, 4> radius{};   // radius as a cubic Bezier in the same parameter
-};
-
-struct PhantomOptions {
-    bool early_out = true;   // Reshetov's bounding-cylinder test before iterating
-    int max_iterations = 24; // per search start (the HPG 2018 listings cap a few tens)
-};
-
-[[nodiscard]] inline bool is_finite(const PhantomCurve& c) {
-    for (int i = 0; i < 4; ++i)
-        if (!is_finite(c.cp[i]) || !std::isfinite(c.radius[i])) return false;
-    return true;
-}
-
-[[nodiscard]] inline float max_radius(const PhantomCurve& c) {
-    return std::max({c.radius[0], c.radius[1], c.radius[2], c.radius[3], 0.0f});
-}
-
-// Control-polygon hull grown by the largest radius (convex hull property).
-[[nodiscard]] inline Aabb bounds(const PhantomCurve& c) {
-    Aabb b;
-    for (const Vec3& p : c.cp) b.extend(p);
-    const float r = max_radius(c);
-    return padded_bounds({b.lo - r, b.hi + r});
-}
-
 namespace detail {
 
 inline constexpr int kPhantomBrackets = 4;  // sub-curves searched separately (see intersect)
 inline constexpr int kPhantomSplits = 3;    // halvings of a bracket whose search found nothing
-
-struct DBasis {
-    DVec3 x, y;
-};
-[[nodiscard]] inline DBasis dbasis(const DVec3& n) {  // Duff et al. 2017, in double
-    const double sign = std::copysign(1.0, n.z);
-    const double a = -1.0 / (sign + n.z), b = n.x * n.y * a;
-    return {DVec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-            DVec3(b, sign + n.y * n.y * a, -n.y)};
-}
 
 struct PhantomCandidate {
     double s = kDInf;  // distance along the unit ray direction
@@ -242,27 +208,21 @@ inline bool capsule_z(const DVec3& a, const DVec3& b, double R, double& lo, doub
 
 }  // namespace detail
 
+// Runs the program `opt` selects (see phantom_curve.h).
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const PhantomCurve& pc, const Ray& ray, Sink& sink,
                                            const PhantomOptions& opt = {}) {
+    if (opt.program == PhantomProgram::Paper) return intersect_reshetov(pc, ray, sink, opt);
     sink.on(Event::IsPhantom);
     if (!is_finite(pc) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
-    const DVec3 d(ray.direction);
-    const double dlen = glm::length(d);
     const double rmax = max_radius(pc);
-    if (!(dlen > 0.0) || !(rmax > 0.0)) return std::nullopt;
+    if (!(glm::length(DVec3(ray.direction)) > 0.0) || !(rmax > 0.0)) return std::nullopt;
 
-    // Ray-centric frame.
-    const DVec3 e = d / dlen;
-    const detail::DBasis xy = detail::dbasis(e);
-    const DVec3 o(ray.origin);
-    std::array<DVec3, 4> q;
-    std::array<double, 4> rr;
-    for (int i = 0; i < 4; ++i) {
-        const DVec3 v = DVec3(pc.cp[i]) - o;
-        q[i] = DVec3(glm::dot(v, xy.x), glm::dot(v, xy.y), glm::dot(v, e));
-        rr[i] = std::max(double(pc.radius[i]), 0.0);
-    }
+    sink.on(Event::PhantomSetup);
+    const detail::RccCurve rcc = detail::to_ray_frame(pc, ray);
+    const std::array<DVec3, 4>& q = rcc.q;
+    const std::array<double, 4>& rr = rcc.r;
+    const double dlen = rcc.dlen;
     const double smin = double(ray.tmin) * dlen;
 
     if (opt.early_out) {
@@ -365,10 +325,7 @@ template <class Sink>
     if (!(best.s < kDInf)) return std::nullopt;
     const float t = static_cast<float>(best.s / dlen);
     if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
-    const DVec3 n = best.normal.x * xy.x + best.normal.y * xy.y + best.normal.z * e;
-    const double nl = glm::length(n);
-    const Vec3 normal = nl > 0.0 ? Vec3(n / nl) : Vec3(-ray.direction / float(dlen));
-    return Hit{t, normal, static_cast<float>(best.u)};
+    return Hit{t, detail::from_ray_frame(rcc, best.normal, ray), static_cast<float>(best.u)};
 }
 
 }  // namespace rtc

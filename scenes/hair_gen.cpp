@@ -23,6 +23,11 @@ void check(const HairDesc& d) {
     if (!(d.radius > 0.0f)) throw std::invalid_argument("hair: radius must be positive");
     if (d.emitter == HairEmitter::Sphere && !(d.sphere_radius > 0.0f))
         throw std::invalid_argument("hair: sphere radius must be positive");
+    if (d.emitter == HairEmitter::Lock) {
+        if (!(d.lock_radius > 0.0f)) throw std::invalid_argument("hair: lock radius must be positive");
+        if (!(glm::length(d.lock_axis) > 0.0f)) throw std::invalid_argument("hair: lock axis must not be zero");
+        if (d.with_mesh) throw std::invalid_argument("hair: a lock has no emitter mesh");
+    }
     const std::uint64_t points = std::uint64_t{d.strands} * d.points_per_strand;
     if (points >= (std::uint64_t{1} << 32))
         throw std::invalid_argument("hair: " + std::to_string(points) + " points exceed 2^32");
@@ -38,15 +43,28 @@ void frame(const Vec3& n, Vec3& t1, Vec3& t2) {
     t2 = Vec3(b, sign + n.y * n.y * a, -n.y);
 }
 
-// Grows one strand from `root` with unit normal `normal` into s.
-void grow(const HairDesc& d, SceneRng& rng, const Vec3& root, const Vec3& normal, Strands& s) {
+// What a lock's strands share: the frame the curl is measured in and its phase.
+struct SharedCurl {
+    Vec3 t1;
+    float phase;
+};
+
+// Grows one strand from `root` with unit normal `normal` into s; a strand of a
+// lock takes its curl from `shared` (the lock's frame turned onto its axis).
+void grow(const HairDesc& d, SceneRng& rng, const Vec3& root, const Vec3& normal, Strands& s,
+          const SharedCurl* shared = nullptr) {
     Vec3 t1, t2;
     frame(normal, t1, t2);
     const float lean_angle = kTwoPi * static_cast<float>(rng.uniform());
     const float lean = d.lean * static_cast<float>(rng.uniform());
     const Vec3 axis = glm::normalize(normal + lean * (std::cos(lean_angle) * t1 + std::sin(lean_angle) * t2));
-    frame(axis, t1, t2);
-    const float phase = kTwoPi * static_cast<float>(rng.uniform());
+    if (shared) {
+        t1 = glm::normalize(shared->t1 - glm::dot(shared->t1, axis) * axis);
+        t2 = glm::cross(axis, t1);
+    } else {
+        frame(axis, t1, t2);
+    }
+    const float phase = shared ? shared->phase : kTwoPi * static_cast<float>(rng.uniform());
     const float tip = d.tip_radius < 0.0f ? d.radius : d.tip_radius;
     const std::uint32_t n = d.points_per_strand;
     for (std::uint32_t k = 0; k < n; ++k) {
@@ -83,9 +101,24 @@ const char* style_name(HairStyle s) {
 Scene make_hair(const HairDesc& d) {
     check(d);
     Scene scene;
-    scene.name = std::string("procedural ") + style_name(d.style) + " hair on a sphere";
     reserve(d, scene.strands);
     SceneRng rng(d.seed);
+    if (d.emitter == HairEmitter::Lock) {
+        scene.name = std::string("procedural ") + style_name(d.style) + " hair lock";
+        // Roots uniform over the disk across the axis (square-root warp).
+        const Vec3 axis = glm::normalize(d.lock_axis);
+        Vec3 t1, t2;
+        frame(axis, t1, t2);
+        const SharedCurl shared{t1, kTwoPi * static_cast<float>(rng.uniform())};
+        for (std::uint32_t i = 0; i < d.strands; ++i) {
+            const float rho = d.lock_radius * std::sqrt(static_cast<float>(rng.uniform()));
+            const float phi = kTwoPi * static_cast<float>(rng.uniform());
+            const Vec3 root = d.lock_center + rho * (std::cos(phi) * t1 + std::sin(phi) * t2);
+            grow(d, rng, root, axis, scene.strands, &shared);
+        }
+        return scene;
+    }
+    scene.name = std::string("procedural ") + style_name(d.style) + " hair on a sphere";
     for (std::uint32_t i = 0; i < d.strands; ++i) {
         // Uniform on the sphere: uniform height and azimuth (Archimedes).
         const float y = static_cast<float>(rng.uniform(-1.0, 1.0));

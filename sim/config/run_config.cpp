@@ -81,11 +81,13 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
     }
     if (r.has("traversal")) {
         const JsonReader t = r.child("traversal");
-        t.allow_only({"schedule", "phantom_early_out"});
+        t.allow_only({"schedule", "phantom_early_out", "phantom_program"});
         c.trace.schedule = t.choice("schedule", "immediate", {"immediate", "deferred"}) == "deferred"
                                ? IsSchedule::Deferred
                                : IsSchedule::Immediate;
         c.trace.phantom.early_out = t.boolean("phantom_early_out", true);
+        c.trace.phantom.program =
+            *phantom_program_from_name(t.choice("phantom_program", "bracketed", {"bracketed", "paper"}));
     }
     if (r.has("cost")) {
         const nlohmann::json& cost = config["cost"];

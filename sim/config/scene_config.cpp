@@ -37,17 +37,24 @@ Scene bundle_scene(const JsonReader& j) {
 }
 
 Scene hair_scene(const JsonReader& j) {
-    j.allow_only({"type", "name", "emitter", "sphere_radius", "sphere_center", "mesh", "style", "strands",
-                  "points_per_strand", "length", "radius", "tip_radius", "lean", "wave_amplitude",
-                  "waves", "curl_radius", "curl_turns", "seed", "with_mesh"});
+    j.allow_only({"type", "name", "emitter", "sphere_radius", "sphere_center", "mesh", "lock_center",
+                  "lock_radius", "lock_axis", "style", "strands", "points_per_strand", "length", "radius",
+                  "tip_radius", "lean", "wave_amplitude", "waves", "curl_radius", "curl_turns", "seed",
+                  "with_mesh"});
     HairDesc d;
-    const std::string emitter = j.choice("emitter", "sphere", {"sphere", "mesh"});
-    d.emitter = emitter == "sphere" ? HairEmitter::Sphere : HairEmitter::Mesh;
-    if (d.emitter == HairEmitter::Sphere && j.has("mesh")) j.fail("mesh", "only with \"emitter\": \"mesh\"");
-    if (d.emitter == HairEmitter::Mesh && (j.has("sphere_radius") || j.has("sphere_center")))
-        j.fail(j.has("sphere_radius") ? "sphere_radius" : "sphere_center", "only with \"emitter\": \"sphere\"");
+    const std::string emitter = j.choice("emitter", "sphere", {"sphere", "mesh", "lock"});
+    d.emitter = emitter == "sphere" ? HairEmitter::Sphere : emitter == "mesh" ? HairEmitter::Mesh : HairEmitter::Lock;
+    // Each emitter's own keys only with that emitter.
+    for (const auto& [key, owner] : {std::pair{"sphere_radius", "sphere"}, {"sphere_center", "sphere"},
+                                     {"mesh", "mesh"}, {"lock_center", "lock"}, {"lock_radius", "lock"},
+                                     {"lock_axis", "lock"}})
+        if (j.has(key) && emitter != owner) j.fail(key, std::string("only with \"emitter\": \"") + owner + "\"");
     d.sphere_radius = static_cast<float>(j.positive("sphere_radius", d.sphere_radius));
     d.sphere_center = to_vec3(j.vec3("sphere_center", std::array<double, 3>{0, 0, 0}));
+    d.lock_radius = static_cast<float>(j.positive("lock_radius", d.lock_radius));
+    d.lock_center = to_vec3(j.vec3("lock_center", std::array<double, 3>{0, 0, 0}));
+    d.lock_axis = to_vec3(j.vec3("lock_axis", std::array<double, 3>{0, -1, 0}));
+    if (!(glm::length(d.lock_axis) > 0.0f)) j.fail("lock_axis", "must not be zero");
     const std::string style = j.choice("style", "straight", {"straight", "wavy", "curly"});
     d.style = style == "straight" ? HairStyle::Straight : style == "wavy" ? HairStyle::Wavy : HairStyle::Curly;
     d.strands = static_cast<std::uint32_t>(j.integer("strands", d.strands, 1, kMaxCount));
@@ -64,8 +71,9 @@ Scene hair_scene(const JsonReader& j) {
     d.curl_turns = static_cast<float>(j.number("curl_turns", d.curl_turns, 0.0));
     d.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
     d.with_mesh = j.boolean("with_mesh", d.with_mesh);
+    if (d.with_mesh && d.emitter == HairEmitter::Lock) j.fail("with_mesh", "a lock has no emitter mesh");
     Scene s;
-    if (d.emitter == HairEmitter::Sphere) {
+    if (d.emitter != HairEmitter::Mesh) {
         s = make_hair(d);
     } else {
         const std::filesystem::path path = resolve_data_path(j, "mesh");

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <algorithm>
+
 namespace rtc {
 
 namespace {
@@ -78,6 +80,19 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
         cycles[run.costs[p].name] = entry;
     }
     j["cycles"] = cycles;
+    if (const std::uint64_t calls = m.frame.totals[Event::IsPhantom]; calls > 0) {
+        // Either program counts one is_phantom per call and its own iterations.
+        const EventTotals& e = m.frame.totals;
+        const auto per_call = [&](std::uint64_t n) { return static_cast<double>(n) / static_cast<double>(calls); };
+        j["phantom"] = {
+            {"program", std::string(phantom_program_name(run.config.trace.phantom.program))},
+            {"calls", calls},
+            {"iterations_per_call", per_call(e[Event::PhantomIteration] + e[Event::PhantomPaperIteration])},
+            {"early_out_rejects_per_call",
+             per_call(e[Event::PhantomEarlyReject] + e[Event::PhantomCylinderTest] -
+                      std::min(e[Event::PhantomCylinderTest], e[Event::PhantomSetup]))},
+            {"second_end_per_call", per_call(e[Event::PhantomSecondEnd])}};
+    }
     const MemoryBreakdown& mem = m.memory;
     j["memory_bytes"] = {{"tlas_nodes", mem.tlas_nodes},     {"blas_nodes", mem.blas_nodes},
                          {"instances", mem.instances},       {"custom_prims", mem.custom_prims},

@@ -27,6 +27,7 @@ TEST_CASE("intersect phantom: hand-computed cases and events") {
     CHECK(h->u == doctest::Approx(0.5f).epsilon(1e-4));
     CHECK(h->normal.z == doctest::Approx(-1.0f).epsilon(1e-5));
     CHECK(sink.ray[Event::IsPhantom] == 1);
+    CHECK(sink.ray[Event::PhantomSetup] == 1);  // the frame comes first, then the early out
     CHECK(sink.ray[Event::PhantomEarlyOut] == 1);
     CHECK(sink.ray[Event::PhantomEarlyReject] == 0);
     CHECK(sink.ray[Event::PhantomIteration] >= 1);

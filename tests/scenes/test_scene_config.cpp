@@ -1,5 +1,7 @@
 // The scene block of a config: each type, path resolution, defaults, and the
 // errors (unknown keys, bad values, missing radius) naming file and JSON path.
+#include "scenes/stats.h"
+#include "sim/util/json_file.h"
 #include "sim/config/scene_config.h"
 
 #include <doctest/doctest.h>
@@ -48,6 +50,33 @@ TEST_CASE("scene config: procedural hair") {
                           {"strands", 50}, {"with_mesh", true}});
     CHECK(m.strands.strand_count() == 50);
     CHECK(m.mesh.triangles.size() == 5952);
+    // Lock emitter: roots in a disk around lock_center, growing along lock_axis.
+    const Scene lock = load({{"type", "hair"}, {"emitter", "lock"}, {"style", "curly"}, {"strands", 20},
+                             {"points_per_strand", 33}, {"lock_center", {1, 2, 3}}, {"lock_radius", 0.05},
+                             {"lock_axis", {0, 0, 2}}, {"lean", 0}, {"length", 1}});
+    CHECK(lock.strands.segment_count() == 20 * 32);
+    CHECK(lock.mesh.triangles.empty());
+    const Vec3 root = lock.strands.points[0], tip = lock.strands.points[32];
+    CHECK(glm::length(Vec3(root.x, root.y, 0) - Vec3(1, 2, 0)) <= 0.05f + 1e-6f);
+    CHECK(root.z == doctest::Approx(3.0f));
+    CHECK(tip.z - root.z == doctest::Approx(1.0f).epsilon(1e-5));
+}
+
+TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's segment counts") {
+    const std::string file = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/curly_table1.json";
+    const json config = parse_json_text(read_text_file(file), file);
+    const json& scenes = config.at("sweep").at("scene");
+    REQUIRE(scenes.size() == 2);
+    const std::size_t segments[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Scene s = load_scene(JsonReader(scenes[i], file, "/sweep/scene/" + std::to_string(i)));
+        CAPTURE(s.name);
+        CHECK(s.strands.segment_count() == segments[i]);
+        CHECK(s.mesh.triangles.empty());
+        const SceneStats st = compute_stats(s);
+        CHECK(st.mean_radius == doctest::Approx(3e-5).epsilon(1e-3));
+        CHECK(st.mean_length_over_radius > 150.0);
+    }
 }
 
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
@@ -84,6 +113,11 @@ TEST_CASE("scene config: errors name the config file and the JSON path") {
     has(error_of({{"type", "hair"}, {"style", "frizzy"}}), "/scene/style");
     has(error_of({{"type", "hair"}, {"points_per_strand", 1}}), "/scene/points_per_strand");
     has(error_of({{"type", "hair"}, {"mesh", "x.obj"}}), "/scene/mesh: only with");
+    has(error_of({{"type", "hair"}, {"lock_radius", 0.1}}), "/scene/lock_radius: only with \"emitter\": \"lock\"");
+    has(error_of({{"type", "hair"}, {"emitter", "lock"}, {"sphere_radius", 1}}), "/scene/sphere_radius: only with");
+    has(error_of({{"type", "hair"}, {"emitter", "lock"}, {"lock_axis", {0, 0, 0}}}), "/scene/lock_axis: must not be zero");
+    has(error_of({{"type", "hair"}, {"emitter", "lock"}, {"lock_radius", 0}}), "/scene/lock_radius");
+    has(error_of({{"type", "hair"}, {"emitter", "lock"}, {"with_mesh", true}}), "/scene/with_mesh: a lock has no");
     has(error_of({{"type", "file"}}), "/scene: a file scene needs");
     has(error_of({{"type", "file"}, {"curves", {{"path", "nope.hair"}}}}), "/scene/curves/path: no such file");
     has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}}}}),

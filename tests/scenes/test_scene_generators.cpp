@@ -104,6 +104,69 @@ TEST_CASE("scene hair: millions of segments quickly, deterministic") {
     CHECK(make_hair(small).strands.points == make_hair(small).strands.points);
 }
 
+namespace {
+
+// Radius of the circle through three points.
+float circumradius(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const float ab = glm::length(b - a), bc = glm::length(c - b), ca = glm::length(a - c);
+    return ab * bc * ca / (2.0f * glm::length(glm::cross(b - a, c - a)));
+}
+
+}  // namespace
+
+TEST_CASE("scene hair: curly lock: counts, determinism, curl radius and pitch as configured") {
+    HairDesc d;
+    d.emitter = HairEmitter::Lock;
+    d.style = HairStyle::Curly;
+    d.strands = 300;
+    d.points_per_strand = 121;  // 120 segments, 12 turns: 10 points per turn
+    d.length = 0.3f;
+    d.curl_radius = 0.03f;      // 9 mm helix radius
+    d.curl_turns = 12.0f;
+    d.lock_center = Vec3(0.0f, 1.0f, 0.0f);
+    d.lock_radius = 0.005f;
+    d.lean = 0.0f;
+    d.seed = 11;
+    const Scene sc = make_hair(d);
+    const Strands& s = sc.strands;
+    REQUIRE(s.strand_count() == 300);
+    CHECK(s.segment_count() == 300 * 120);
+    CHECK(sc.mesh.triangles.empty());
+    CHECK(sc.name == "procedural curly hair lock");
+    // Deterministic for a seed; another seed, another lock.
+    CHECK(make_hair(d).strands.points == s.points);
+    HairDesc other = d;
+    other.seed = 12;
+    CHECK(make_hair(other).strands.points != s.points);
+    const float helix = d.curl_radius * d.length;
+    for (std::size_t i = 0; i < 300; ++i) {
+        const std::uint32_t b = s.offsets[i];
+        const Vec3 root = s.points[b];
+        // Roots in the disk across the axis (-Y by default).
+        CHECK(root.y == doctest::Approx(1.0f));
+        CHECK(glm::length(Vec3(root.x, 0.0f, root.z)) <= d.lock_radius * 1.0001f);
+        // The helix: every three consecutive points, seen down the axis, lie
+        // on a circle of the configured radius; one turn drops length/turns.
+        for (std::uint32_t k = 0; k + 2 < 121; k += 17) {
+            auto across = [&](std::uint32_t j) { return Vec3(s.points[b + j].x, 0.0f, s.points[b + j].z); };
+            CHECK(circumradius(across(k), across(k + 1), across(k + 2)) ==
+                  doctest::Approx(helix).epsilon(1e-3));
+        }
+        CHECK(root.y - s.points[b + 10].y == doctest::Approx(d.length / d.curl_turns).epsilon(1e-4));
+        // A ringlet: with no lean, every strand is its root plus the same curl.
+        for (std::uint32_t k = 0; k < 121; k += 30)
+            CHECK(glm::length((s.points[b + k] - root) - (s.points[k] - s.points[0])) < 1e-5f);
+    }
+    // Lean spreads the lock's strands but keeps them curling together.
+    d.lean = 0.1f;
+    const Strands leaning = make_hair(d).strands;
+    CHECK(leaning.points != s.points);
+    CHECK_THROWS_AS((void)make_hair([&] { HairDesc e = d; e.lock_radius = 0.0f; return e; }()),
+                    std::invalid_argument);
+    CHECK_THROWS_AS((void)make_hair([&] { HairDesc e = d; e.with_mesh = true; return e; }()),
+                    std::invalid_argument);
+}
+
 TEST_CASE("scene hair: mesh emitter grows along triangle normals") {
     TriangleMesh plane;  // the square [0,1]^2 at z = 0, facing +z
     plane.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)};

@@ -86,9 +86,10 @@ std::unique_ptr<BuiltMethod> build(std::string_view name, const Geometry& g, con
 
 template <TraversalMode Mode = TraversalMode::Closest>
 TraceHit trace_any(const std::unique_ptr<BuiltMethod>& m, const Geometry& g, const Ray& ray,
-                   CountingSink& sink, IsSchedule schedule) {
+                   CountingSink& sink, IsSchedule schedule, PhantomProgram program = PhantomProgram::Bracketed) {
     TraceOptions o;
     o.schedule = schedule;
+    o.phantom.program = program;
     return m->trace(g, ray, o, sink, Mode);
 }
 
@@ -120,9 +121,13 @@ TEST_CASE("methods: ref and obb return the same closest hit for every ray") {
                 for (int i = 0; i < 1500; ++i) {
                     const Ray ray = scene_ray(rng);
                     for (const IsSchedule schedule : {IsSchedule::Immediate, IsSchedule::Deferred}) {
+                        // The paper's phantom program too (the bracketed one is the default).
+                        const auto program = kind == PrimitiveKind::Phantom && i % 2 == 1
+                                                 ? PhantomProgram::Paper
+                                                 : PhantomProgram::Bracketed;
                         CountingSink sr, so;
-                        const TraceHit a = trace_any(ref, g, ray, sr, schedule);
-                        const TraceHit b = trace_any(obb, g, ray, so, schedule);
+                        const TraceHit a = trace_any(ref, g, ray, sr, schedule, program);
+                        const TraceHit b = trace_any(obb, g, ray, so, schedule, program);
                         const bool same = a.geom == b.geom && a.prim == b.prim &&
                                           std::bit_cast<std::uint32_t>(a.t) == std::bit_cast<std::uint32_t>(b.t);
                         mismatches += !same;

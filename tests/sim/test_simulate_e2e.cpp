@@ -112,7 +112,34 @@ TEST_CASE("simulate e2e: a sweep writes one row per point and a plot") {
     CHECK(fs::exists(dir + "/0_scene.tilt_deg=0/report.json"));
 }
 
+TEST_CASE("simulate e2e: the phantom program is selectable and reports iterations per call") {
+    for (const std::string program : {"bracketed", "paper"}) {
+        const std::string dir = out_dir("phantom_" + program);
+        REQUIRE(run(kTiny, dir, {"primitives.kind=phantom", "traversal.phantom_program=" + program,
+                                 "output={\"images\":false}", "workload.width=24", "workload.height=24"}) == 0);
+        const auto r = report(dir);
+        for (const char* m : {"ref", "obb"}) {
+            CAPTURE(program);
+            CAPTURE(m);
+            const auto& method = r["methods"][m];
+            const auto& ev = method["events"];
+            const bool paper = program == "paper";
+            CHECK(method["phantom"]["program"] == program);
+            CHECK(method["phantom"]["calls"] == ev["is_phantom"]["total"]);
+            const double iterations = ev[paper ? "phantom_paper_iteration" : "phantom_iteration"]["total"];
+            CHECK(method["phantom"]["iterations_per_call"].get<double>() ==
+                  doctest::Approx(iterations / ev["is_phantom"]["total"].get<double>()));
+            CHECK(ev[paper ? "phantom_iteration" : "phantom_paper_iteration"]["total"] == 0);
+            CHECK(ev[paper ? "phantom_early_out" : "phantom_cylinder_test"]["total"] == 0);
+            CHECK(ev["phantom_setup"]["total"].get<double>() > 0);
+            CHECK(method["phantom"]["iterations_per_call"].get<double>() <= (paper ? 80.0 : 24.0 * 28));
+        }
+        CHECK(r["methods"]["ref"]["events"]["reported_hit"]["total"].get<double>() > 0);
+    }
+}
+
 TEST_CASE("simulate e2e: bad input fails with one line naming the file and JSON path") {
+    CHECK(error_of(kTiny, {"traversal.phantom_program=\"fast\""}).find(kTiny + ": /traversal/phantom_program:") == 0);
     CHECK(error_of(kTiny, {"workload.spp=-4"}) ==
           kTiny + ": /workload/spp: expected a positive integer, got -4");
     CHECK(error_of(kTiny, {"workload.bogus=1"}).find(kTiny + ": /workload/bogus: unknown key") == 0);
