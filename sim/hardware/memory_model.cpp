@@ -10,7 +10,7 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
                              std::uint64_t mesh_triangles) {
     MemoryBreakdown b;
     const double node = m.node_bytes(c.width);
-    b.tlas_nodes = static_cast<double>(c.tlas_nodes) * node;
+    b.tlas_nodes = m.instance_includes_tlas_nodes && c.instances > 0 ? 0.0 : static_cast<double>(c.tlas_nodes) * node;
     b.blas_nodes = static_cast<double>(c.blas_nodes) * node;
     b.instances = static_cast<double>(c.instances) * m.instance_bytes;
     b.custom_prims = static_cast<double>(c.custom_prims) * m.custom_prim_bytes;
@@ -25,7 +25,7 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
 MemoryModel parse_memory_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "bytes", "instance_limit"});
+    r.allow_only({"name", "description", "bytes", "instance_limit", "instance_includes_tlas_nodes"});
     MemoryModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
@@ -51,6 +51,12 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     read("phantom_data", m.primitive_data_bytes[3]);
     read("mesh_vertex", m.mesh_vertex_bytes);
     read("mesh_triangle", m.mesh_triangle_bytes);
+    if (r.has("instance_includes_tlas_nodes")) {
+        const JsonReader e = r.child("instance_includes_tlas_nodes");
+        e.allow_only({"value", "source"});
+        m.instance_includes_tlas_nodes = e.boolean("value", std::nullopt);
+        m.sources.emplace_back("instance_includes_tlas_nodes", e.string("source", std::nullopt));
+    }
     const JsonReader limit = r.child("instance_limit");
     limit.allow_only({"value", "source"});
     m.instance_limit =

@@ -22,6 +22,9 @@ struct MemoryModel {
     std::array<double, 4> primitive_data_bytes{32, 32, 32, 64};  // per PrimitiveKind
     double mesh_vertex_bytes = 12, mesh_triangle_bytes = 12;     // shared mesh data
     std::uint64_t instance_limit = 1u << 24;
+    // True when instance_bytes is a measured whole (the instance structure's
+    // size over its instance count), so the TLAS nodes are inside it.
+    bool instance_includes_tlas_nodes = false;
     std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
 
     [[nodiscard]] double node_bytes(int width) const {
