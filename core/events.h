@@ -33,6 +33,10 @@ enum class Event : std::uint8_t {
     PhantomEarlyReject,  // ... and rejected the ray before iterating
     PhantomBracketTest,  // one ray/capsule test bounding a sub-curve (root bracketing)
     ReportedHit,         // an intersection program reported a hit
+    LeafObbTest,         // software OBB test at the start of an IS program (Embree curveNi-style)
+    LssTest,             // hardware ray/linear-swept-sphere test in the RT unit (Blackwell)
+    ObbBoxTest,          // hardware test of one oriented child box (own 3x4 transform, Woop et al. 2014)
+    NodeRotate,          // the ray is rotated once for a node whose children share a rotation (RDNA4)
     Count
 };
 
@@ -43,7 +47,8 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "blas_node_visit", "blas_box_test",   "triangle_test",        "context_switch",
     "is_call",       "is_cylinder",       "is_capsule",           "is_link",
     "is_phantom",    "phantom_iteration", "phantom_early_out",    "phantom_early_reject",
-    "phantom_bracket_test", "reported_hit",
+    "phantom_bracket_test", "reported_hit", "leaf_obb_test",      "lss_test",
+    "obb_box_test",  "node_rotate",
 };
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");

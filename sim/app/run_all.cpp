@@ -138,6 +138,9 @@ int run_all(const CliOptions& cli) {
         const Table t = summary_table(runs);
         write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
         write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
+        const Table st = speedup_table(runs);
+        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
+        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);

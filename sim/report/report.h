@@ -19,6 +19,10 @@ namespace rtc {
 // Markdown file and the terminal table.
 [[nodiscard]] Table summary_table(const std::vector<RunResult>& runs);
 
+// Speedup of every method over the baseline under every cost preset, one row
+// per run and method (speedups.csv, speedups.md).
+[[nodiscard]] Table speedup_table(const std::vector<RunResult>& runs);
+
 // Render, per-method heat maps of cycles and IS calls per pixel on common
 // scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
 void write_images(const RunResult& run, const std::string& dir);

