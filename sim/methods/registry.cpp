@@ -10,7 +10,8 @@ namespace rtc {
 #define RTCSIM_BUILTIN_METHODS(X) \
     X(ref)                        \
     X(obb)                        \
-    X(leaf_obb)
+    X(leaf_obb)                   \
+    X(split)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)

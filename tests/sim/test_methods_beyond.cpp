@@ -14,7 +14,7 @@ using namespace rtc::test;
 
 namespace {
 
-constexpr const char* kBeyond[] = {"leaf-obb"};
+constexpr const char* kBeyond[] = {"leaf-obb", "split"};
 
 bool same_hit(const TraceHit& a, const TraceHit& b) {
     return a.geom == b.geom && a.prim == b.prim &&
@@ -76,5 +76,14 @@ TEST_CASE("beyond: leaf-obb pays ref's hand-overs, each an OBB test, and runs fa
         CHECK(t.method[Event::ContextSwitch] == t.ref[Event::ContextSwitch]);
         CHECK(t.method[Event::LeafObbTest] == t.method[Event::ContextSwitch]);
         CHECK(t.method[Event::IsCall] * 2 < t.ref[Event::IsCall]);
+    }
+}
+
+TEST_CASE("beyond: split calls a program per reference reached, fewer in total than ref") {
+    for (const PrimitiveKind kind : kKinds) {
+        CAPTURE(kind_name(kind));
+        const Totals t = compare_with_ref("split", kind, false, 4, 600);
+        CHECK(t.method[Event::ContextSwitch] == t.method[Event::IsCall]);
+        CHECK(t.method[Event::IsCall] < t.ref[Event::IsCall]);
     }
 }
