@@ -11,7 +11,8 @@ namespace rtc {
     X(ref)                        \
     X(obb)                        \
     X(leaf_obb)                   \
-    X(split)
+    X(split)                      \
+    X(lss)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)

@@ -14,7 +14,7 @@ using namespace rtc::test;
 
 namespace {
 
-constexpr const char* kBeyond[] = {"leaf-obb", "split"};
+constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss"};
 
 bool same_hit(const TraceHit& a, const TraceHit& b) {
     return a.geom == b.geom && a.prim == b.prim &&
@@ -49,11 +49,14 @@ Totals compare_with_ref(std::string_view name, PrimitiveKind kind, bool mesh, in
     return t;
 }
 
+bool lss_kind(PrimitiveKind k) { return k == PrimitiveKind::Capsule || k == PrimitiveKind::Link; }
+
 }  // namespace
 
 TEST_CASE("beyond: every new method returns ref's closest hit for every ray") {
     for (const char* name : kBeyond) {
         for (const PrimitiveKind kind : kKinds) {
+            if (std::string_view(name) == "lss" && !lss_kind(kind)) continue;
             for (const bool mesh : {false, true}) {
                 for (const int width : {2, 4, 8}) {
                     CAPTURE(name);
@@ -85,5 +88,32 @@ TEST_CASE("beyond: split calls a program per reference reached, fewer in total t
         const Totals t = compare_with_ref("split", kind, false, 4, 600);
         CHECK(t.method[Event::ContextSwitch] == t.method[Event::IsCall]);
         CHECK(t.method[Event::IsCall] < t.ref[Event::IsCall]);
+    }
+}
+
+TEST_CASE("beyond: lss tests ref's candidates in the RT unit, with no hand-over") {
+    for (const PrimitiveKind kind : {PrimitiveKind::Capsule, PrimitiveKind::Link}) {
+        CAPTURE(kind_name(kind));
+        const Totals t = compare_with_ref("lss", kind, false, 4, 600);
+        CHECK(t.method[Event::ContextSwitch] == 0);
+        CHECK(t.method[Event::IsCall] == 0);
+        CHECK(t.method[Event::LssTest] == t.ref[Event::ContextSwitch]);  // same BLAS, same boxes
+    }
+}
+
+TEST_CASE("beyond: lss is not applicable to cylinders and phantom curves, and says why") {
+    Rng rng(5);
+    const MethodEntry* lss = find_method("lss");
+    REQUIRE(lss != nullptr);
+    for (const PrimitiveKind kind : kKinds) {
+        const Geometry g = random_geometry(rng, kind, 10, false);
+        const std::string why = not_applicable_reason(*lss, g);
+        CAPTURE(kind_name(kind));
+        CHECK(why.empty() == lss_kind(kind));
+        if (!why.empty()) {
+            CHECK(why.find(kind_name(kind)) != std::string::npos);
+            CHECK_THROWS_AS((void)lss->build(g, options(4)), std::invalid_argument);
+        }
+        CHECK(not_applicable_reason(*find_method("ref"), g).empty());
     }
 }
