@@ -12,7 +12,8 @@ namespace rtc {
     X(obb)                        \
     X(leaf_obb)                   \
     X(split)                      \
-    X(lss)
+    X(lss)                        \
+    X(obb_nodes)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)

@@ -14,7 +14,7 @@ using namespace rtc::test;
 
 namespace {
 
-constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss"};
+constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss", "obb-nodes"};
 
 bool same_hit(const TraceHit& a, const TraceHit& b) {
     return a.geom == b.geom && a.prim == b.prim &&
@@ -98,6 +98,16 @@ TEST_CASE("beyond: lss tests ref's candidates in the RT unit, with no hand-over"
         CHECK(t.method[Event::ContextSwitch] == 0);
         CHECK(t.method[Event::IsCall] == 0);
         CHECK(t.method[Event::LssTest] == t.ref[Event::ContextSwitch]);  // same BLAS, same boxes
+    }
+}
+
+TEST_CASE("beyond: obb-nodes tests oriented children and halves the programs") {
+    for (const PrimitiveKind kind : kKinds) {
+        CAPTURE(kind_name(kind));
+        const Totals t = compare_with_ref("obb-nodes", kind, false, 4, 600);
+        CHECK(t.method[Event::ObbBoxTest] > 0);
+        CHECK(t.method[Event::NodeRotate] == 0);
+        CHECK(t.method[Event::IsCall] * 2 < t.ref[Event::IsCall]);
     }
 }
 
