@@ -13,7 +13,8 @@ namespace rtc {
     X(leaf_obb)                   \
     X(split)                      \
     X(lss)                        \
-    X(obb_nodes)
+    X(obb_nodes)                  \
+    X(obb_quantized)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)

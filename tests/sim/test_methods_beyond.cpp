@@ -14,7 +14,7 @@ using namespace rtc::test;
 
 namespace {
 
-constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss", "obb-nodes"};
+constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss", "obb-nodes", "obb-quantized"};
 
 bool same_hit(const TraceHit& a, const TraceHit& b) {
     return a.geom == b.geom && a.prim == b.prim &&
@@ -111,6 +111,16 @@ TEST_CASE("beyond: obb-nodes tests oriented children and halves the programs") {
     }
 }
 
+TEST_CASE("beyond: obb-quantized rotates the ray per node and calls fewer programs") {
+    for (const PrimitiveKind kind : kKinds) {
+        CAPTURE(kind_name(kind));
+        const Totals t = compare_with_ref("obb-quantized", kind, false, 4, 600);
+        CHECK(t.method[Event::NodeRotate] > 0);
+        CHECK(t.method[Event::ObbBoxTest] == 0);
+        CHECK(t.method[Event::IsCall] < t.ref[Event::IsCall]);
+    }
+}
+
 TEST_CASE("beyond: lss is not applicable to cylinders and phantom curves, and says why") {
     Rng rng(5);
     const MethodEntry* lss = find_method("lss");
@@ -126,4 +136,26 @@ TEST_CASE("beyond: lss is not applicable to cylinders and phantom curves, and sa
         }
         CHECK(not_applicable_reason(*find_method("ref"), g).empty());
     }
+}
+
+TEST_CASE("beyond: structure counts the memory model prices") {
+    Rng rng(9);
+    const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 300, true);
+    const StructureCounts ref = build("ref", g, options(4))->structures();
+    const StructureCounts leaf = build("leaf-obb", g, options(4))->structures();
+    CHECK(leaf.leaf_obbs == 300);
+    CHECK(leaf.custom_prims == ref.custom_prims);
+    const StructureCounts split = build("split", g, options(4))->structures();
+    CHECK(split.custom_prims > ref.custom_prims);       // several references per long primitive
+    CHECK(split.custom_prims <= 8 * ref.custom_prims);  // at most 8 pieces each
+    const StructureCounts lss = build("lss", g, options(4))->structures();
+    CHECK(lss.lss_prims == 300);
+    CHECK(lss.custom_prims == 0);
+    CHECK(lss.triangles == g.triangles.size());
+    const StructureCounts nodes = build("obb-nodes", g, options(4))->structures();
+    CHECK(nodes.oriented_children > 0);
+    CHECK(nodes.custom_prims == 300);
+    const StructureCounts quant = build("obb-quantized", g, options(4))->structures();
+    CHECK(quant.oriented_children == 0);  // the rotation index lives in the node
+    CHECK(quant.blas_nodes == ref.blas_nodes);
 }
