@@ -3,11 +3,14 @@
 // t bit for bit), for every primitive kind they accept, every BVH width, both
 // IS schedules, with and without a mesh; and each does what it claims in the
 // event counts (fewer programs, no hand-over, OBB tests, rotations).
+#include "sim/hardware/cost_model.h"
 #include "sim/methods_test_util.h"
 
 #include <doctest/doctest.h>
 
 #include <bit>
+#include <filesystem>
+#include <set>
 
 using namespace rtc;
 using namespace rtc::test;
@@ -158,4 +161,27 @@ TEST_CASE("beyond: structure counts the memory model prices") {
     const StructureCounts quant = build("obb-quantized", g, options(4))->structures();
     CHECK(quant.oriented_children == 0);  // the rotation index lives in the node
     CHECK(quant.blas_nodes == ref.blas_nodes);
+}
+
+TEST_CASE("beyond: every hardware preset loads with a source per event and says what it can run") {
+    namespace fs = std::filesystem;
+    const std::set<std::string> known{"custom_primitives", "instance_transforms", "lss", "obb_nodes",
+                                      "quantized_obb_nodes"};
+    std::set<std::string> names, runnable;
+    for (const auto& e : fs::directory_iterator(fs::path(RTCSIM_SOURCE_DIR) / "configs" / "hw")) {
+        const std::string file = e.path().filename().string();
+        if (e.path().extension() != ".json" || file.rfind("memory-", 0) == 0) continue;
+        CAPTURE(file);
+        const CostModel m = load_cost_model(e.path().string());
+        names.insert(m.name);
+        for (std::size_t i = 0; i < kEventCount; ++i) CHECK(m.source[i].size() > 10);
+        for (const std::string& f : m.features) CHECK(known.count(f) == 1);
+        for (const MethodEntry& method : registered_methods())
+            if (m.missing_feature(method.info.needs).empty()) runnable.insert(method.info.name);
+    }
+    for (const char* gen : {"turing-calibrated", "ampere", "ada", "blackwell", "rdna3", "rdna4"})
+        CHECK(names.count(gen) == 1);
+    // Every built-in method runs under at least one preset.
+    for (const char* m : {"ref", "obb", "leaf-obb", "split", "lss", "obb-nodes", "obb-quantized"})
+        CHECK(runnable.count(m) == 1);
 }
