@@ -129,6 +129,7 @@ int run_all(const CliOptions& cli) {
         r.sweep_label = points[i].label;
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        (void)write_break_even_maps(r, dir);
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};

@@ -27,6 +27,11 @@ namespace rtc {
 // scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
 void write_images(const RunResult& run, const std::string& dir);
 
+// The config's break-even maps for this run (break_even_<name>.png in `dir`):
+// per cell of two swept costs, the cheapest method and its margin. Returns
+// the files written.
+std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
+
 // For each numeric sweep axis: speedup of every non-ref method against it, one
 // line per value of the other axes (e.g. speedup vs tilt, one line per N).
 // Returns the files written.
