@@ -139,6 +139,7 @@ int run_all(const CliOptions& cli) {
         r.sweep_label = points[i].label;
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        (void)write_break_even_maps(r, dir);
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
@@ -148,6 +149,9 @@ int run_all(const CliOptions& cli) {
         const Table t = summary_table(runs);
         write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
         write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
+        const Table st = speedup_table(runs);
+        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
+        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);

@@ -15,6 +15,9 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
     b.instances = static_cast<double>(c.instances) * m.instance_bytes;
     b.custom_prims = static_cast<double>(c.custom_prims) * m.custom_prim_bytes;
     b.triangles = static_cast<double>(c.triangles) * m.triangle_bytes;
+    b.lss_prims = static_cast<double>(c.lss_prims) * m.lss_prim_bytes;
+    b.oriented_children = static_cast<double>(c.oriented_children) * m.obb_child_bytes;
+    b.leaf_obbs = static_cast<double>(c.leaf_obbs) * m.leaf_obb_bytes;
     b.common = static_cast<double>(primitives) *
                    m.primitive_data_bytes[static_cast<std::size_t>(kind)] +
                static_cast<double>(mesh_vertices) * m.mesh_vertex_bytes +
@@ -31,7 +34,7 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     m.description = r.string("description", "");
     const JsonReader bytes = r.child("bytes");
     bytes.allow_only({"node_w2", "node_w4", "node_w8", "custom_prim", "triangle", "instance",
-                      "cylinder_data", "capsule_data", "link_data", "phantom_data", "mesh_vertex",
+                      "lss_prim", "obb_child", "leaf_obb", "cylinder_data", "capsule_data", "link_data", "phantom_data", "mesh_vertex",
                       "mesh_triangle"});
     const auto read = [&](const char* key, double& out) {
         const JsonReader e = bytes.child(key);
@@ -45,6 +48,9 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     read("custom_prim", m.custom_prim_bytes);
     read("triangle", m.triangle_bytes);
     read("instance", m.instance_bytes);
+    read("lss_prim", m.lss_prim_bytes);
+    read("obb_child", m.obb_child_bytes);
+    read("leaf_obb", m.leaf_obb_bytes);
     read("cylinder_data", m.primitive_data_bytes[0]);
     read("capsule_data", m.primitive_data_bytes[1]);
     read("link_data", m.primitive_data_bytes[2]);

@@ -99,6 +99,12 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         const MethodEntry& method = *find_method(name);  // names were checked when parsing
         MethodRun m;
         m.method = name;
+        m.reason = not_applicable_reason(method, geometry);
+        if (!m.reason.empty()) {
+            m.runnable = false;
+            r.methods.push_back(std::move(m));
+            continue;
+        }
         m.instances = method.instance_count(geometry);
         if (m.instances > r.memory.instance_limit) {
             m.runnable = false;
