@@ -9,6 +9,7 @@
 #include "sim/frame.h"
 #include "sim/memory_model.h"
 #include "sim/run_config.h"
+#include "sim/work_estimate.h"
 
 #include <string>
 #include <vector>
@@ -51,6 +52,7 @@ struct RunContext {
     unsigned threads = 0;
     bool quiet = false;
     std::string out_dir;  // rays/hits files are streamed here when requested
+    WorkLimits limits;    // checked again once the scene is loaded
 };
 
 [[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,

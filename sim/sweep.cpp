@@ -43,7 +43,14 @@ void apply_set(nlohmann::json& config, const std::string& spec, const std::strin
         throw InputError(origin + ": --set " + spec + ": expected key.path=value");
     const std::string key = spec.substr(0, eq), text = spec.substr(eq + 1);
     nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-    if (value.is_discarded()) value = text;  // a bare word is a string
+    if (value.is_discarded()) {
+        value = text;  // a bare word is a string, and must be UTF-8 to be echoed
+        try {
+            (void)value.dump();
+        } catch (const nlohmann::json::exception&) {
+            throw InputError(origin + ": --set " + key + ": value is not valid UTF-8");
+        }
+    }
     set_by_path(config, key, value);
 }
 
