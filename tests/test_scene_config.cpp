@@ -1,6 +1,7 @@
 // The scene block of a config: each type, path resolution, defaults, and the
 // errors (unknown keys, bad values, missing radius) naming file and JSON path.
 #include "sim/scene_config.h"
+#include "shared_data.h"
 
 #include <doctest/doctest.h>
 
@@ -12,7 +13,8 @@ using nlohmann::json;
 namespace {
 // A config that claims to live in ../shared/data, so relative data paths
 // resolve beside it.
-const std::string kConfig = std::string(RTCSIM_SHARED_DIR) + "/data/run.json";
+const std::string kConfig = (test::shared_data() / "run.json").string();
+const std::filesystem::path kData = test::shared_data();
 
 Scene load(const json& j) { return load_scene(JsonReader(j, kConfig, "/scene")); }
 
@@ -43,6 +45,7 @@ TEST_CASE("scene config: procedural hair") {
     CHECK(s.strands.segment_count() == 400);
     CHECK(s.strands.radii[4] == doctest::Approx(0.001f));
     CHECK_FALSE(s.mesh.triangles.empty());
+    if (!test::shared_present({kData / "hair/sintel_head.obj"})) return;
     // Mesh emitter, mesh path relative to the config's directory.
     const Scene m = load({{"type", "hair"}, {"emitter", "mesh"}, {"mesh", "hair/sintel_head.obj"},
                           {"strands", 50}, {"with_mesh", true}});
@@ -51,6 +54,9 @@ TEST_CASE("scene config: procedural hair") {
 }
 
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
+    if (!test::shared_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj",
+                               kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair"}))
+        return;
     const Scene sintel = load({{"type", "file"},
                                {"curves", {{"path", "hair/sintel_hair_16pts.tfx"}, {"radius", 0.0001}}},
                                {"mesh", {{"path", "hair/sintel_head.obj"}}}});
@@ -86,6 +92,9 @@ TEST_CASE("scene config: errors name the config file and the JSON path") {
     has(error_of({{"type", "hair"}, {"mesh", "x.obj"}}), "/scene/mesh: only with");
     has(error_of({{"type", "file"}}), "/scene: a file scene needs");
     has(error_of({{"type", "file"}, {"curves", {{"path", "nope.hair"}}}}), "/scene/curves/path: no such file");
+    if (!test::shared_present({kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair",
+                               kData / "hair/sintel_head.obj"}))
+        return;  // the rest reads real files
     has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}}}}),
         "/scene/curves/radius: missing");
     has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}, {"radius", -1}}}}),
