@@ -38,19 +38,19 @@ void set_by_path(nlohmann::json& config, const std::string& dotted_path,
 }
 
 void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin) {
+    // Keys and bare-word values end up in the echoed config and the reports,
+    // which nlohmann can only write as UTF-8.
+    try {
+        (void)nlohmann::json(spec).dump();
+    } catch (const nlohmann::json::exception&) {
+        throw InputError(origin + ": --set: argument is not valid UTF-8");
+    }
     const auto eq = spec.find('=');
     if (eq == std::string::npos || eq == 0)
         throw InputError(origin + ": --set " + spec + ": expected key.path=value");
     const std::string key = spec.substr(0, eq), text = spec.substr(eq + 1);
     nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-    if (value.is_discarded()) {
-        value = text;  // a bare word is a string, and must be UTF-8 to be echoed
-        try {
-            (void)value.dump();
-        } catch (const nlohmann::json::exception&) {
-            throw InputError(origin + ": --set " + key + ": value is not valid UTF-8");
-        }
-    }
+    if (value.is_discarded()) value = text;  // a bare word is a string
     set_by_path(config, key, value);
 }
 

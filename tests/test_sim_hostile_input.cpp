@@ -140,3 +140,9 @@ TEST_CASE("hostile config: the ceilings on the command line") {
     CHECK_THROWS_WITH_AS(parse_cli({"x.json", "--max-memory", "0"}), doctest::Contains("--max-memory"), InputError);
     CHECK(format_bytes(1536.0 * 1024 * 1024) == "1.5 GiB");
 }
+
+TEST_CASE("hostile config: a --set that is not UTF-8 (found by fuzz_config)") {
+    // Its key reached the config and made the echo of it throw nlohmann's type_error 316.
+    check_starts(error_of(kTiny, {"\xff=1"}), kTiny + ": --set: ", "UTF-8");
+    check_starts(error_of(kTiny, {"name=\xfe\xff"}), kTiny + ": --set: ", "UTF-8");
+}
