@@ -9,6 +9,7 @@
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
 #include "sim/config/sweep.h"
+#include "sim/run/work_estimate.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -109,16 +110,26 @@ int run_all(const CliOptions& cli) {
     nlohmann::json config = parse_json_text(read_text_file(cli.config), cli.config);
     if (!config.is_object()) throw InputError(cli.config + ": /: expected a JSON object");
     for (const std::string& s : cli.sets) apply_set(config, s, cli.config);
+    (void)sweep_point_count(config, cli.config, cli.limits);  // before expanding it
     const std::vector<SweepPoint> points = expand_sweep(config, cli.config);
     // Parse every point before any work, so a bad value fails in a second.
     std::vector<RunConfig> parsed;
-    for (const SweepPoint& p : points) parsed.push_back(parse_run_config(p.config, cli.config));
+    std::vector<WorkEstimate> estimates;
+    for (const SweepPoint& p : points) {
+        parsed.push_back(parse_run_config(p.config, cli.config));
+        estimates.push_back(estimate_config_work(parsed.back()));
+    }
+    const WorkEstimate work = combine_work(estimates);
+    check_work(work, cli.limits, cli.config);
     const std::string out = cli.out ? *cli.out : "out/" + parsed.front().name;
     make_dir(out);
     if (!cli.quiet) {
         std::cerr << "simulate " << cli.config << " -> " << out << "\neffective configuration:\n"
                   << config.dump(2) << "\n";
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
+        std::cerr << "estimate: " << count_text(work.rays) << " rays, "
+                  << (work.primitives > 0 ? count_text(work.primitives) + " primitives, " : std::string())
+                  << format_bytes(work.memory_bytes) << " of memory\n";
     }
     std::vector<RunResult> runs;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -134,6 +145,7 @@ int run_all(const CliOptions& cli) {
         ctx.quiet = cli.quiet;
         ctx.record_warps = cli.calibrate;
         ctx.out_dir = dir;
+        ctx.limits = cli.limits;
         RunResult r = run_simulation(parsed[i], points[i].config, ctx);
         r.sweep_values = points[i].values;
         r.sweep_label = points[i].label;

@@ -85,6 +85,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
     r.load_seconds = seconds_since(t_load);
+    check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
