@@ -7,6 +7,7 @@
 #include "core/input_error.h"
 #include "core/parallel.h"
 #include "sim/bench/bench_run.h"
+#include "sim/methods/method.h"
 
 #include <nlohmann/json.hpp>
 
@@ -34,7 +35,10 @@ constexpr const char* kHelp =
     "  --repeat K     best of K traces per figure (default 3)\n"
     "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
     "  --json FILE    also write the figures as JSON\n"
-    "  --methods LIST only these methods (ref, obb) where a case has them\n"
+    "  --methods LIST only these methods (any registered name) where a case has them\n"
+    "  --execution M  per_ray (default) or warp: trace in warps priced under\n"
+    "                 --warp-preset (default configs/hw/turing-calibrated.json)\n"
+    "  --warp-preset F the warp preset of --execution warp\n"
     "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
     "  --help         this text\n";
 
@@ -50,6 +54,8 @@ struct Cli {
 
 Cli parse(int argc, char** argv) {
     Cli cli;
+    bool warp = false;
+    std::string warp_preset = "configs/hw/turing-calibrated.json";
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto value = [&]() -> std::string {
@@ -89,10 +95,18 @@ Cli parse(int argc, char** argv) {
             cli.methods.clear();
             std::stringstream list(value());
             for (std::string item; std::getline(list, item, ',');) {
-                if (item != "ref" && item != "obb")
-                    throw InputError("bench: --methods: unknown method \"" + item + "\"");
+                if (!find_method(item))
+                    throw InputError("bench: --methods: unknown method \"" + item + "\" (" +
+                                     method_names_list() + ")");
                 cli.methods.insert(item);
             }
+        } else if (a == "--execution") {
+            const std::string v = value();
+            if (v != "per_ray" && v != "warp")
+                throw InputError("bench: --execution: expected per_ray or warp, got \"" + v + "\"");
+            warp = v == "warp";
+        } else if (a == "--warp-preset") {
+            warp_preset = value();
         } else if (a == "--pixels") {
             cli.pixels = number(1);
         } else if (a == "--json") {
@@ -101,6 +115,7 @@ Cli parse(int argc, char** argv) {
             throw InputError("bench: unknown option \"" + a + "\" (see --help)");
         }
     }
+    if (warp) cli.bench.warp_preset = warp_preset;
     return cli;
 }
 

@@ -1,6 +1,8 @@
 #include "sim/bench/bench_run.h"
 
+#include "core/input_error.h"
 #include "core/parallel.h"
+#include "sim/hardware/cost_model.h"
 #include "sim/execution/frame.h"
 #include "sim/util/json_reader.h"
 #include "sim/config/run_config.h"
@@ -9,6 +11,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <optional>
 #include <chrono>
 #include <cstdio>
 #include <variant>
@@ -22,19 +25,24 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 FrameResult trace_frame(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
-                        const TraceOptions& trace, unsigned threads) {
+                        const TraceOptions& trace, unsigned threads, const CostModel* warp) {
     FrameOptions fo;
     fo.threads = threads;
     fo.progress = false;
+    if (warp) {
+        fo.warp = &warp->execution;
+        fo.warp_presets = {warp};
+    }
     return method.run(g, frame, trace, fo);
 }
 
 // Best rate of `repeat` traces; every trace must count the same events.
 double best_rate(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
-                 const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m) {
+                 const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m,
+                 const CostModel* warp) {
     double best = 0.0;
     for (int i = 0; i < repeat; ++i) {
-        const FrameResult r = trace_frame(method, g, frame, trace, threads);
+        const FrameResult r = trace_frame(method, g, frame, trace, threads, warp);
         if (m.rays == 0) {
             m.rays = r.rays_traced;
             m.totals = r.totals;
@@ -74,6 +82,11 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     frame.camera = make_camera(c.workload, geometry_bounds(geometry));
     frame.path = path_options(c.workload);
     const unsigned threads = o.threads ? o.threads : hardware_threads();
+    std::optional<CostModel> warp;
+    if (!o.warp_preset.empty()) warp = load_cost_model(o.warp_preset);
+    if (warp && !warp->execution.warp())
+        throw InputError(o.warp_preset + ": /execution/model: bench --execution warp needs a warp preset");
+    const CostModel* warp_ptr = warp ? &*warp : nullptr;
 
     for (const std::string& name : c.methods) {
         MethodFigures m;
@@ -87,8 +100,8 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
         std::fprintf(stderr, "  %s %s: built in %.2f s, tracing...\n", run.label.c_str(),
                      m.method.c_str(), m.build_seconds);
         if (o.single_thread)
-            m.rays_per_second_1t = best_rate(*built, geometry, frame, c.trace, 1, o.repeat, m);
-        m.rays_per_second_nt = best_rate(*built, geometry, frame, c.trace, threads, o.repeat, m);
+            m.rays_per_second_1t = best_rate(*built, geometry, frame, c.trace, 1, o.repeat, m, warp_ptr);
+        m.rays_per_second_nt = best_rate(*built, geometry, frame, c.trace, threads, o.repeat, m, warp_ptr);
         const double rays = static_cast<double>(std::max<std::uint64_t>(m.rays, 1));
         m.is_calls_per_ray = static_cast<double>(m.totals[Event::IsCall]) / rays;
         m.box_tests_per_ray =

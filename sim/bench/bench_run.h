@@ -16,6 +16,8 @@ struct BenchOptions {
     unsigned threads = 0;  // the "all threads" figure; 0: all cores
     int repeat = 3;        // timings: best of this many traces (the machine is shared)
     bool single_thread = true;  // also time 1 thread (off for the scale case)
+    // Trace in warps priced under this preset (the SIMT model); empty: per ray.
+    std::string warp_preset;
 };
 
 struct MethodFigures {

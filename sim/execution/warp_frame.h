@@ -37,9 +37,12 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         std::uint64_t rays_traced = 0;
     };
     std::vector<Task> task_out(tasks);
+    // Per thread: scratch, call profiles, program prices per preset, waves per bounce.
     std::vector<TraceScratch> scratch(threads);
-    for (TraceScratch& s : scratch) s.record_calls = true;
-    std::vector<std::vector<WaveWork>> waves(threads);  // per thread, per bounce
+    std::vector<CallProfiles> profiles(threads);
+    std::vector<std::vector<ProgramPrices>> prices(threads, std::vector<ProgramPrices>(presets));
+    for (unsigned i = 0; i < threads; ++i) scratch[i].profiles = &profiles[i];
+    std::vector<std::vector<WaveWork>> waves(threads);
     if (frame.from_camera) {
         out.width = frame.camera.width;
         out.height = frame.camera.height;
@@ -66,6 +69,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             ++t.rays_traced;
             if (wv.size() <= depth) wv.resize(depth + 1);
             WaveWork& w = wv[depth];
+            w.profiles = &profiles[thread];
             w.lanes.push_back({sink.ray, static_cast<std::uint32_t>(w.calls.size()),
                                static_cast<std::uint32_t>(sc.calls.size()), pixel});
             w.calls.insert(w.calls.end(), sc.calls.begin(), sc.calls.end());
@@ -75,7 +79,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             for (WaveWork& w : wv) {
                 if (w.lanes.empty()) continue;
                 for (std::size_t p = 0; p < presets; ++p) {
-                    const WavePrice price = price_wave(w, *fo.warp_presets[p]);
+                    const WavePrice price = price_wave(w, *fo.warp_presets[p], prices[thread][p]);
                     t.warp[p].add(price, w.lanes.size());
                     if (p != 0 || !frame.from_camera) continue;
                     const float share = static_cast<float>(price.total() / static_cast<double>(w.lanes.size()));

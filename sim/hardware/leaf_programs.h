@@ -15,6 +15,7 @@
 #include "intersectors/link.h"
 #include "intersectors/phantom.h"
 #include "intersectors/triangle.h"
+#include "sim/hardware/call_profiles.h"
 #include "sim/hardware/trace_hit.h"
 
 #include <algorithm>
@@ -41,10 +42,11 @@ struct TraceOptions {
 // Per-thread scratch reused across rays (no allocation per ray).
 struct TraceScratch {
     std::vector<std::uint32_t> deferred;
-    // The SIMT model needs each program call's own events: when set, every
-    // call of the current ray appends them to `calls` (cleared per ray).
-    bool record_calls = false;
-    std::vector<RayCounts> calls;
+    // The SIMT model needs each program call's own events: when `profiles`
+    // is set, every call of the current ray appends its profile id to
+    // `calls` (cleared per ray).
+    CallProfiles* profiles = nullptr;
+    std::vector<CallProfiles::Id> calls;
 };
 
 template <class Prim, class Sink>
@@ -131,11 +133,10 @@ private:
     float run_program(std::uint32_t index, Ray ray, float tmax) {
         ray.tmax = tmax;
         if constexpr (Sink::kCounts) {
-            if (scratch_.record_calls) {  // the call's events on their own, then into the ray's
-                CountingSink call;
+            if (scratch_.profiles) {  // the call's events into the ray's and apart
+                CallSink call{sink_, {}};
                 const float t = program(index, ray, call);
-                sink_.ray += call.ray;
-                scratch_.calls.push_back(call.ray);
+                scratch_.calls.push_back(scratch_.profiles->id(call.call));
                 return t;
             }
         }

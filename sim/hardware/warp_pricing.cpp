@@ -1,82 +1,108 @@
 #include "sim/hardware/warp_pricing.h"
 
 #include <algorithm>
+#include <array>
 
 namespace rtc {
 
 namespace {
 
-// Price of the events of one unit in a count vector.
-double unit_price(const RayCounts& c, const CostModel& m, EventUnit unit) {
-    double s = 0.0;
+// The events of each unit, as index lists (no per-event branch when pricing).
+template <EventUnit U>
+constexpr auto events_of() {
+    constexpr std::size_t n = [] {
+        std::size_t k = 0;
+        for (const EventUnit u : kEventUnits) k += u == U;
+        return k;
+    }();
+    std::array<std::uint8_t, n> idx{};
+    std::size_t k = 0;
     for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] == unit) s += static_cast<double>(c.n[e]) * m.cycles[e];
+        if (kEventUnits[e] == U) idx[k++] = static_cast<std::uint8_t>(e);
+    return idx;
+}
+constexpr auto kShaderEvents = events_of<EventUnit::Shader>();
+constexpr auto kRtEvents = events_of<EventUnit::RtUnit>();
+constexpr auto kHandOffEvents = events_of<EventUnit::HandOff>();
+
+template <class List>
+double price_of(const RayCounts& c, const CostModel& m, const List& events) {
+    double s = 0.0;
+    for (const std::uint8_t e : events) s += static_cast<double>(c.n[e]) * m.cycles[e];
     return s;
 }
 
-void add_unit(EffectiveCounts& eff, const RayCounts& c, EventUnit unit, double scale) {
-    for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] == unit) eff[e] += scale * static_cast<double>(c.n[e]);
+template <class List>
+void add_counts(EffectiveCounts& eff, const RayCounts& c, const List& events, double scale) {
+    for (const std::uint8_t e : events) eff[e] += scale * static_cast<double>(c.n[e]);
 }
 
 }  // namespace
 
-WavePrice price_wave(const WaveWork& wave, const CostModel& m, EffectiveCounts* eff) {
+double program_price(const ProgramCounts& call, const CostModel& m) {
+    double s = 0.0;
+    for (std::size_t k = 0; k < kProgramEventCount; ++k) s += static_cast<double>(call.n[k]) * m.cycles[kProgramEvents[k]];
+    return s;
+}
+
+void add_program_counts(EffectiveCounts& eff, const ProgramCounts& call) {
+    for (std::size_t k = 0; k < kProgramEventCount; ++k) eff[kProgramEvents[k]] += call.n[k];
+}
+
+void ProgramPrices::extend(const CallProfiles& table, CallProfiles::Id id, const CostModel& m) {
+    while (price_.size() <= id) price_.push_back(program_price(table[static_cast<CallProfiles::Id>(price_.size())], m));
+}
+
+WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& prices, EffectiveCounts* eff) {
     WavePrice p;
     if (wave.lanes.empty()) return p;
     // Shader work in lockstep: the wave pays its most expensive lane once.
     std::size_t shader_lane = 0, rt_lane = 0;
     double rt_max = -1.0;
+    std::uint32_t max_calls = 0;
     for (std::size_t i = 0; i < wave.lanes.size(); ++i) {
-        const double s = unit_price(wave.lanes[i].counts, m, EventUnit::Shader);
-        if (s > p.shader) {
-            p.shader = s;
-            shader_lane = i;
-        }
-        const double r = unit_price(wave.lanes[i].counts, m, EventUnit::RtUnit);
+        const LaneWork& l = wave.lanes[i];
+        const double s = price_of(l.counts, m, kShaderEvents);
+        if (s > p.shader) p.shader = s, shader_lane = i;
+        const double r = price_of(l.counts, m, kRtEvents);
         p.rt_lane_sum += r;
-        if (r > rt_max) {
-            rt_max = r;
-            rt_lane = i;
-        }
+        if (r > rt_max) rt_max = r, rt_lane = i;
+        max_calls = std::max(max_calls, l.calls);
     }
     // RT unit: P lanes overlap; never faster than the slowest lane.
     const double parallel = std::max(1.0, m.execution.rt_parallel_lanes);
     const bool slowest_lane_bounds = rt_max >= p.rt_lane_sum / parallel;
     p.rt = slowest_lane_bounds ? rt_max : p.rt_lane_sum / parallel;
-    // Program rounds.
-    std::uint32_t max_calls = 0;
-    for (const LaneWork& l : wave.lanes) max_calls = std::max(max_calls, l.calls);
+    // Program rounds: one hand-off each, then the most expensive active call.
     p.rounds = max_calls;
     double handoff_cost = 0.0;
-    for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] == EventUnit::HandOff) handoff_cost += m.cycles[e];
+    for (const std::uint8_t e : kHandOffEvents) handoff_cost += m.cycles[e];
     p.handoff = static_cast<double>(max_calls) * handoff_cost;
-    for (std::uint32_t r = 0; r < max_calls; ++r) {
-        double worst = -1.0;
-        const RayCounts* worst_call = nullptr;
-        for (const LaneWork& l : wave.lanes) {
-            if (r >= l.calls) continue;
-            ++p.active_lane_rounds;
-            const RayCounts& call = wave.calls[l.first_call + r];
-            const double c = unit_price(call, m, EventUnit::Program);
-            if (c > worst) {
-                worst = c;
-                worst_call = &call;
-            }
+    // Lanes outer, rounds inner: work in proportion to the calls, not rounds x lanes.
+    thread_local std::vector<double> worst;
+    thread_local std::vector<CallProfiles::Id> worst_call;
+    worst.assign(max_calls, -1.0);
+    worst_call.assign(max_calls, 0);
+    for (const LaneWork& l : wave.lanes) {
+        p.active_lane_rounds += l.calls;
+        for (std::uint32_t r = 0; r < l.calls; ++r) {
+            const CallProfiles::Id id = wave.calls[l.first_call + r];
+            const double c = prices.of(*wave.profiles, id, m);
+            if (c > worst[r]) worst[r] = c, worst_call[r] = id;
         }
-        p.programs += worst;
-        if (eff) add_unit(*eff, *worst_call, EventUnit::Program, 1.0);
+    }
+    for (std::uint32_t r = 0; r < max_calls; ++r) {
+        p.programs += worst[r];
+        if (eff) add_program_counts(*eff, (*wave.profiles)[worst_call[r]]);
     }
     if (eff) {
-        add_unit(*eff, wave.lanes[shader_lane].counts, EventUnit::Shader, 1.0);
+        add_counts(*eff, wave.lanes[shader_lane].counts, kShaderEvents, 1.0);
         if (slowest_lane_bounds) {
-            add_unit(*eff, wave.lanes[rt_lane].counts, EventUnit::RtUnit, 1.0);
+            add_counts(*eff, wave.lanes[rt_lane].counts, kRtEvents, 1.0);
         } else {
-            for (const LaneWork& l : wave.lanes) add_unit(*eff, l.counts, EventUnit::RtUnit, 1.0 / parallel);
+            for (const LaneWork& l : wave.lanes) add_counts(*eff, l.counts, kRtEvents, 1.0 / parallel);
         }
-        for (std::size_t e = 0; e < kEventCount; ++e)
-            if (kEventUnits[e] == EventUnit::HandOff) (*eff)[e] += max_calls;
+        for (const std::uint8_t e : kHandOffEvents) (*eff)[e] += max_calls;
     }
     return p;
 }

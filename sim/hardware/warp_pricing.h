@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/sinks.h"
+#include "sim/hardware/call_profiles.h"
 #include "sim/hardware/cost_model.h"
 
 #include <array>
@@ -22,12 +23,27 @@ struct LaneWork {
 // The lanes of one wave (idle lanes are simply absent).
 struct WaveWork {
     std::vector<LaneWork> lanes;
-    std::vector<RayCounts> calls;  // each call's own events (unit Program)
+    std::vector<CallProfiles::Id> calls;  // each call's profile (its own events)
+    const CallProfiles* profiles = nullptr;
 
     void clear() {
         lanes.clear();
         calls.clear();
     }
+};
+
+// The program price of each profile of a table under one model, filled as
+// the table grows (one per thread and preset while tracing).
+class ProgramPrices {
+public:
+    double of(const CallProfiles& table, CallProfiles::Id id, const CostModel& model) {
+        if (id >= price_.size()) extend(table, id, model);
+        return price_[id];
+    }
+
+private:
+    void extend(const CallProfiles& table, CallProfiles::Id id, const CostModel& model);
+    std::vector<double> price_;
 };
 
 struct WavePrice {
@@ -44,8 +60,13 @@ struct WavePrice {
 // max or sum of linear functions of the costs). Calibration fits with them.
 using EffectiveCounts = std::array<double, kEventCount>;
 
-[[nodiscard]] WavePrice price_wave(const WaveWork& wave, const CostModel& model,
+[[nodiscard]] WavePrice price_wave(const WaveWork& wave, const CostModel& model, ProgramPrices& prices,
                                    EffectiveCounts* effective = nullptr);
+
+// The price of one call profile's program events, and its counts added to
+// effective counts.
+[[nodiscard]] double program_price(const ProgramCounts& call, const CostModel& model);
+void add_program_counts(EffectiveCounts& effective, const ProgramCounts& call);
 
 // Sums over many waves, for one preset.
 struct WarpTotals {

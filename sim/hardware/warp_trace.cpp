@@ -25,41 +25,24 @@ constexpr std::array<std::uint8_t, kLaneEvents> lane_event_index() {
 }
 constexpr auto kLaneEventIndex = lane_event_index();
 
-std::uint64_t hash_counts(const RayCounts& c) {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the counts
-    for (const std::uint32_t v : c.n) h = (h ^ v) * 1099511628211ull;
-    return h;
-}
-
 }  // namespace
-
-std::uint16_t WarpTrace::profile_id(const RayCounts& c) {
-    const std::uint64_t h = hash_counts(c);
-    const auto [lo, hi] = profile_index_.equal_range(h);
-    for (auto it = lo; it != hi; ++it)
-        if (profiles_[it->second].n == c.n) return static_cast<std::uint16_t>(it->second);
-    if (profiles_.size() > 0xFFFF)
-        throw std::length_error("warp trace: more than 65,536 distinct intersection-program call profiles");
-    const auto id = static_cast<std::uint16_t>(profiles_.size());
-    profiles_.push_back(c);
-    profile_index_.emplace(h, id);
-    return id;
-}
 
 void WarpTrace::append(const WaveWork& wave) {
     wave_first_lane_.push_back(static_cast<std::uint32_t>(lanes()));
     for (const LaneWork& l : wave.lanes) {
         for (const std::uint8_t e : kLaneEventIndex) lane_counts_.push_back(l.counts.n[e]);
         lane_first_call_.push_back(static_cast<std::uint32_t>(call_profile_.size()));
-        for (std::uint32_t k = 0; k < l.calls; ++k) call_profile_.push_back(profile_id(wave.calls[l.first_call + k]));
+        for (std::uint32_t k = 0; k < l.calls; ++k)
+            call_profile_.push_back(profiles_.id((*wave.profiles)[wave.calls[l.first_call + k]]));
     }
 }
 
 void WarpTrace::append(const WarpTrace& o) {
     const auto lane_base = static_cast<std::uint32_t>(lanes());
     const auto call_base = static_cast<std::uint32_t>(call_profile_.size());
-    std::vector<std::uint16_t> remap(o.profiles_.size());
-    for (std::size_t p = 0; p < o.profiles_.size(); ++p) remap[p] = profile_id(o.profiles_[p]);
+    std::vector<CallProfiles::Id> remap(o.profiles_.size());
+    for (std::size_t p = 0; p < o.profiles_.size(); ++p)
+        remap[p] = profiles_.id(o.profiles_[static_cast<CallProfiles::Id>(p)]);
     for (const std::uint32_t w : o.wave_first_lane_) wave_first_lane_.push_back(lane_base + w);
     lane_counts_.insert(lane_counts_.end(), o.lane_counts_.begin(), o.lane_counts_.end());
     for (const std::uint32_t c : o.lane_first_call_) lane_first_call_.push_back(call_base + c);
@@ -77,8 +60,7 @@ std::size_t WarpTrace::memory_bytes() const {
 WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
     std::vector<double> profile_price(profiles_.size());
     for (std::size_t p = 0; p < profiles_.size(); ++p)
-        for (std::size_t e = 0; e < kEventCount; ++e)
-            if (kEventUnits[e] == EventUnit::Program) profile_price[p] += profiles_[p].n[e] * m.cycles[e];
+        profile_price[p] = program_price(profiles_[static_cast<CallProfiles::Id>(p)], m);
     double handoff_cost = 0.0;
     for (std::size_t e = 0; e < kEventCount; ++e)
         if (kEventUnits[e] == EventUnit::HandOff) handoff_cost += m.cycles[e];
@@ -110,17 +92,15 @@ WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
         p.handoff = rounds * handoff_cost;
         for (std::uint32_t r = 0; r < rounds; ++r) {
             double worst = -1.0;
-            std::uint16_t worst_profile = 0;
+            CallProfiles::Id worst_profile = 0;
             for (std::size_t l = l0; l < l1; ++l) {
                 if (r >= calls_of(l)) continue;
                 ++p.active_lane_rounds;
-                const std::uint16_t prof = call_profile_[lane_first_call_[l] + r];
+                const CallProfiles::Id prof = call_profile_[lane_first_call_[l] + r];
                 if (profile_price[prof] > worst) worst = profile_price[prof], worst_profile = prof;
             }
             p.programs += worst;
-            if (eff)
-                for (std::size_t e = 0; e < kEventCount; ++e)
-                    if (kEventUnits[e] == EventUnit::Program) (*eff)[e] += profiles_[worst_profile].n[e];
+            if (eff) add_program_counts(*eff, profiles_[worst_profile]);
         }
         if (eff) {
             for (std::size_t k = 0; k < kLaneEvents; ++k) {

@@ -11,7 +11,6 @@
 #include "sim/hardware/warp_pricing.h"
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace rtc {
@@ -33,7 +32,6 @@ public:
     [[nodiscard]] WarpTotals price(const CostModel& model, EffectiveCounts* effective = nullptr) const;
 
 private:
-    std::uint16_t profile_id(const RayCounts& c);
     [[nodiscard]] std::uint32_t calls_of(std::size_t lane) const {
         const std::size_t end = lane + 1 < lane_first_call_.size() ? lane_first_call_[lane + 1] : call_profile_.size();
         return static_cast<std::uint32_t>(end - lane_first_call_[lane]);
@@ -42,9 +40,8 @@ private:
     std::vector<std::uint32_t> wave_first_lane_;
     std::vector<std::uint32_t> lane_counts_;      // kLaneEvents per lane
     std::vector<std::uint32_t> lane_first_call_;
-    std::vector<std::uint16_t> call_profile_;
-    std::vector<RayCounts> profiles_;
-    std::unordered_multimap<std::uint64_t, std::uint32_t> profile_index_;  // hash -> id
+    std::vector<CallProfiles::Id> call_profile_;
+    CallProfiles profiles_;
 };
 
 }  // namespace rtc

@@ -36,6 +36,12 @@ RayCounts counts_of(std::initializer_list<std::pair<Event, std::uint32_t>> l) {
     return c;
 }
 
+ProgramCounts call_of(std::initializer_list<Event> events) {
+    ProgramCounts c;
+    for (const Event e : events) ++c.n[kProgramSlot[static_cast<std::size_t>(e)]];
+    return c;
+}
+
 struct TestFrame {
     Geometry geometry;
     RayWorkload workload;
@@ -74,11 +80,17 @@ TEST_CASE("warp pricing: a two-lane wave by hand") {
     // Lane 0: 10 BLAS box tests, two calls (a miss, then a hit); lane 1: 4 box tests, one miss.
     w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasBoxTest, 10}, {Event::ContextSwitch, 2}}), 0, 2, 0});
     w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasBoxTest, 4}, {Event::ContextSwitch, 1}}), 2, 1, 1});
-    const RayCounts miss = counts_of({{Event::IsCall, 1}, {Event::IsCapsule, 1}});
-    const RayCounts hit = counts_of({{Event::IsCall, 1}, {Event::IsCapsule, 1}, {Event::ReportedHit, 1}});
-    w.calls = {miss, hit, miss};
+    const ProgramCounts miss = call_of({Event::IsCall, Event::IsCapsule});
+    const ProgramCounts hit = call_of({Event::IsCall, Event::IsCapsule, Event::ReportedHit});
+    CHECK(hit[Event::ReportedHit] == 1);
+    CHECK(hit[Event::BlasBoxTest] == 0);  // not a program event
+    CallProfiles table;
+    w.calls = {table.id(miss), table.id(hit), table.id(miss)};
+    w.profiles = &table;
+    CHECK(table.size() == 2);
     EffectiveCounts eff{};
-    const WavePrice p = price_wave(w, m, &eff);
+    ProgramPrices prices;
+    const WavePrice p = price_wave(w, m, prices, &eff);
     CHECK(p.shader == 100.0);          // lockstep: once
     CHECK(p.rt == 2.0 * (10 + 4));     // P = 1: the sum
     CHECK(p.rounds == 2);
@@ -89,9 +101,10 @@ TEST_CASE("warp pricing: a two-lane wave by hand") {
     for (std::size_t e = 0; e < kEventCount; ++e) linear += eff[e] * m.cycles[e];
     CHECK(linear == doctest::Approx(p.total()));
     // Latency-bound RT unit: the slowest lane alone.
-    CHECK(price_wave(w, test_model(32.0)).rt == 20.0);
-    CHECK(price_wave(w, test_model(2.0)).rt == 20.0);  // max(20, 28 / 2)
-    CHECK(price_wave(w, test_model(1.25)).rt == doctest::Approx(28.0 / 1.25));  // sum / P bounds
+    ProgramPrices p32, p2, p125;
+    CHECK(price_wave(w, test_model(32.0), p32).rt == 20.0);
+    CHECK(price_wave(w, test_model(2.0), p2).rt == 20.0);  // max(20, 28 / 2)
+    CHECK(price_wave(w, test_model(1.25), p125).rt == doctest::Approx(28.0 / 1.25));  // sum / P bounds
 }
 
 TEST_CASE("warp execution: same counts and hits as per ray; records re-price exactly; thread-count independent") {

@@ -1,0 +1,102 @@
+// Distinct intersection-program call profiles (each call's own events).
+// The SIMT model prices a round by its most expensive call, so it needs every
+// call's events; but a frame's calls share a handful of profiles (a capsule
+// miss, a capsule hit, a phantom call with k iterations, ...). A call's
+// events are counted in a few bytes (ProgramCounts, program events only) and
+// kept as a 2-byte id into this table: recording is a comparison with the
+// previous call (the usual case) or a hash lookup, and pricing is one table
+// lookup per call.
+#pragma once
+
+#include "core/sinks.h"
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+#include <vector>
+
+namespace rtc {
+
+// Program events (event unit Program) and their slots in ProgramCounts.
+inline constexpr std::size_t kProgramEventCount = [] {
+    std::size_t n = 0;
+    for (const EventUnit u : kEventUnits) n += u == EventUnit::Program;
+    return n;
+}();
+inline constexpr auto kProgramEvents = [] {
+    std::array<std::uint8_t, kProgramEventCount> e{};
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < kEventCount; ++i)
+        if (kEventUnits[i] == EventUnit::Program) e[k++] = static_cast<std::uint8_t>(i);
+    return e;
+}();
+inline constexpr auto kProgramSlot = [] {  // event -> slot (0xFF: not a program event)
+    std::array<std::uint8_t, kEventCount> s{};
+    for (auto& x : s) x = 0xFF;
+    for (std::size_t k = 0; k < kProgramEventCount; ++k) s[kProgramEvents[k]] = static_cast<std::uint8_t>(k);
+    return s;
+}();
+
+// One call's program events (a call counts at most a few hundred of each),
+// padded to whole 8-byte words so equality is a few word compares.
+inline constexpr std::size_t kProgramSlots = (kProgramEventCount + 3) / 4 * 4;
+
+struct ProgramCounts {
+    std::array<std::uint16_t, kProgramSlots> n{};
+
+    [[nodiscard]] std::uint32_t operator[](Event e) const {
+        const std::uint8_t s = kProgramSlot[static_cast<std::size_t>(e)];
+        return s == 0xFF ? 0u : n[s];
+    }
+    [[nodiscard]] bool operator==(const ProgramCounts& o) const {
+        for (std::size_t w = 0; w < kProgramSlots / 4; ++w) {
+            std::uint64_t a, b;
+            std::memcpy(&a, n.data() + 4 * w, 8);
+            std::memcpy(&b, o.n.data() + 4 * w, 8);
+            if (a != b) return false;
+        }
+        return true;
+    }
+    [[nodiscard]] RayCounts ray_counts() const {
+        RayCounts c;
+        for (std::size_t k = 0; k < kProgramEventCount; ++k) c.n[kProgramEvents[k]] = n[k];
+        return c;
+    }
+};
+
+// Counts a call into the ray's sink and, apart, into the call's own counts.
+struct CallSink {
+    static constexpr bool kCounts = true;
+    CountingSink& ray;
+    ProgramCounts call;
+
+    void on(Event e) { add(e, 1); }
+    void add(Event e, std::uint32_t k) {
+        ray.add(e, k);
+        const std::uint8_t s = kProgramSlot[static_cast<std::size_t>(e)];
+        if (s != 0xFF) call.n[s] = static_cast<std::uint16_t>(call.n[s] + k);
+    }
+};
+
+class CallProfiles {
+public:
+    using Id = std::uint16_t;
+
+    // The id of `c`, adding it when new. Throws std::length_error past 65,536
+    // distinct profiles. Inline fast path: the same profile as the last call.
+    Id id(const ProgramCounts& c) {
+        if (last_ < profiles_.size() && profiles_[last_] == c) return last_;
+        return find_or_add(c);
+    }
+    [[nodiscard]] const ProgramCounts& operator[](Id i) const { return profiles_[i]; }
+    [[nodiscard]] std::size_t size() const { return profiles_.size(); }
+
+private:
+    Id find_or_add(const ProgramCounts& c);
+    std::vector<ProgramCounts> profiles_;
+    std::unordered_multimap<std::uint64_t, Id> index_;  // hash -> id
+    Id last_ = 0;
+};
+
+}  // namespace rtc
