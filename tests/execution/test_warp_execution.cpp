@@ -107,7 +107,7 @@ TEST_CASE("warp pricing: a two-lane wave by hand") {
     CHECK(price_wave(w, test_model(1.25), p125).rt == doctest::Approx(28.0 / 1.25));  // sum / P bounds
 }
 
-TEST_CASE("warp execution: same counts and hits as per ray; records re-price exactly; thread-count independent") {
+TEST_CASE("warp execution: same counts and hits as per ray, records re-price exactly, thread-count independent") {
     const TestFrame f = tilted_bundle(40, 28);  // 5 x 7 tiles of 8 x 4
     MethodOptions mo;
     const CostModel a = test_model(32.0), b = test_model(4.0);
