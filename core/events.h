@@ -37,6 +37,10 @@ enum class Event : std::uint8_t {
     PhantomPaperIteration,  // paper program: one Reshetov & Luebke iteration (tangent cone)
     PhantomSecondEnd,    // paper program: the first end's search failed, restart at the other
     ReportedHit,         // an intersection program reported a hit
+    LeafObbTest,         // software OBB test at the start of an IS program (Embree curveNi-style)
+    LssTest,             // hardware ray/linear-swept-sphere test in the RT unit (Blackwell)
+    ObbBoxTest,          // hardware test of one oriented child box (own 3x4 transform, Woop et al. 2014)
+    NodeRotate,          // the ray is rotated once for a node whose children share a rotation (RDNA4)
     Count
 };
 
@@ -48,7 +52,8 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "is_call",       "is_cylinder",       "is_capsule",           "is_link",
     "is_phantom",    "phantom_setup",     "phantom_iteration",    "phantom_early_out",
     "phantom_early_reject", "phantom_bracket_test", "phantom_cylinder_test",
-    "phantom_paper_iteration", "phantom_second_end", "reported_hit",
+    "phantom_paper_iteration", "phantom_second_end", "reported_hit", "leaf_obb_test",
+    "lss_test",      "obb_box_test",      "node_rotate",
 };
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
@@ -85,6 +90,10 @@ inline constexpr EventUnit kEventUnits[] = {
     EventUnit::Program,  // phantom_paper_iteration
     EventUnit::Program,  // phantom_second_end
     EventUnit::Program,  // reported_hit
+    EventUnit::Program,  // leaf_obb_test: software, at the start of the program
+    EventUnit::RtUnit,   // lss_test
+    EventUnit::RtUnit,   // obb_box_test
+    EventUnit::RtUnit,   // node_rotate
 };
 
 static_assert(std::size(kEventUnits) == kEventCount, "every Event needs a unit in kEventUnits");

@@ -56,8 +56,13 @@ struct PrimitiveQuery {
 // every primitive of every BLAS leaf the ray reaches and returns the distance
 // of a hit it accepted (or +inf); it prices its own work (triangle test,
 // context switch, ...) through the same sink. Returns the nearest accepted t.
-template <TraversalMode Mode, class Sink, class PrimFn>
-float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+//
+// trace_two_level_with() lets a method traverse some BLASes its own way:
+// `traverse_blas(blas index, object ray, tmax, leaf_fn)` returns the nearest
+// accepted t, calling leaf_fn(first, count, tmax) as traverse() does.
+template <TraversalMode Mode, class Sink, class PrimFn, class BlasFn>
+float trace_two_level_with(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim,
+                           BlasFn&& traverse_blas) {
     const Vec3 inv_dir = safe_inverse(ray.direction);
     const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count, float tmax) {
         float nearest = kInfinity;
@@ -80,9 +85,7 @@ float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
                 }
                 return best;
             };
-            const float t = traverse<Mode, kBlasEvents>(blas, object_ray.origin,
-                                                        safe_inverse(object_ray.direction),
-                                                        object_ray.tmin, tmax, sink, on_blas_leaf);
+            const float t = traverse_blas(inst.blas, object_ray, tmax, on_blas_leaf);
             if (t < nearest) nearest = t;
             if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
             if (Mode == TraversalMode::AnyHit && t < kInfinity) break;
@@ -91,6 +94,17 @@ float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
     };
     return traverse<Mode, kTlasEvents>(scene.tlas, ray.origin, inv_dir, ray.tmin, ray.tmax, sink,
                                        on_tlas_leaf);
+}
+
+template <TraversalMode Mode, class Sink, class PrimFn>
+float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+    return trace_two_level_with<Mode>(
+        scene, ray, sink, on_prim,
+        [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) {
+            return traverse<Mode, kBlasEvents>(scene.blases[blas], object_ray.origin,
+                                               safe_inverse(object_ray.direction), object_ray.tmin,
+                                               tmax, sink, on_leaf);
+        });
 }
 
 }  // namespace rtc

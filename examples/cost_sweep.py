@@ -4,8 +4,9 @@ re-price its event counts with the context-switch cost and the fixed per-ray
 cost swept over a range, starting from each cost preset, and plot the
 speedup of the masquerade (obb) over the reference (ref) against them.
 
-Pricing is a pure function of the counts (cycles = sum count x cost), so the
-whole sweep takes milliseconds after the one trace.
+Pricing is a pure function of the counts (cycles = sum count x cost; under
+a warp preset, of the recorded waves), so the sweep costs a fraction of a
+trace.
 
     python3 examples/cost_sweep.py [--threads N] [--out DIR] [--size PIXELS]
 """
@@ -42,7 +43,8 @@ def main():
     args = parser.parse_args()
 
     config = os.path.join(ROOT, "configs", "runs", "quickstart.json")
-    result = rtcsim.run(config, threads=args.threads,
+    # Warp presets (an "execution" block) price the recorded waves: keep them.
+    result = rtcsim.run(config, threads=args.threads, record_warps=True,
                         sets={"workload.width": args.size, "workload.height": args.size, "output.images": False})
     start = time.perf_counter()
     curves = {(p, e): speedups(result, p, e, v) for p in result.cost_presets for e, v in SWEPT.items()}

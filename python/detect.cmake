@@ -38,6 +38,11 @@ set(RTCSIM_PYTHON AUTO CACHE STRING
 set_property(CACHE RTCSIM_PYTHON PROPERTY STRINGS AUTO ON OFF)
 if(RTCSIM_PYTHON STREQUAL "AUTO")
   set(RTCSIM_BUILD_PYTHON ${rtcsim_python_found})
+  if(RTCSIM_SANITIZE OR RTCSIM_FUZZ)
+    # An ASan-instrumented extension needs the runtime preloaded into python:
+    # sanitizer and fuzz builds leave the module to the Release build.
+    set(RTCSIM_BUILD_PYTHON OFF)
+  endif()
 elseif(RTCSIM_PYTHON)
   if(NOT rtcsim_python_found)
     message(FATAL_ERROR "RTCSIM_PYTHON=ON needs python3-dev, pybind11-dev and python3-numpy "

@@ -14,7 +14,14 @@
 
 namespace rtc {
 
-// The bytes of a file; throws InputError "<file>: cannot open/read" on failure.
+// Throws InputError "<file>: ..." when `file` exists but is not a regular
+// file (a directory, device or pipe has no size to check a header against
+// and may never end); a missing file is left to the caller's open, which
+// names it. Every reader of input files calls it before opening.
+void require_regular_file(const std::filesystem::path& file);
+
+// The bytes of a regular file; throws InputError "<file>: cannot open/read"
+// on failure.
 [[nodiscard]] std::vector<std::uint8_t> read_file_bytes(const std::filesystem::path& file);
 
 // A read-only little-endian view; out-of-range reads throw rather than crash.
@@ -36,6 +43,17 @@ public:
             fail(offset, "file truncated: " + what + " needs " + std::to_string(n) +
                              " bytes, " + std::to_string(offset > bytes_.size() ? 0 : bytes_.size() - offset) +
                              " left (file is " + std::to_string(bytes_.size()) + " bytes)");
+    }
+
+    // Throws unless `count` records of `record_bytes` each fit in the file from
+    // `offset` on; overflow-safe for any count (no multiplication that wraps).
+    void require_records(std::size_t offset, std::uint64_t count, std::size_t record_bytes,
+                         const std::string& what, std::size_t report_at) const {
+        const std::size_t left = offset > bytes_.size() ? 0 : bytes_.size() - offset;
+        if (record_bytes != 0 && count > left / record_bytes)
+            fail(report_at, what + " need " + std::to_string(count) + " x " +
+                                std::to_string(record_bytes) + " bytes from byte " + std::to_string(offset) +
+                                ", file has " + std::to_string(bytes_.size()));
     }
 
     template <class T>

@@ -46,14 +46,24 @@ LoadedCurves load_hair(const std::filesystem::path& file) {
     const std::size_t pts_at = seg_at + seg_bytes;
     const std::size_t thick_at = pts_at + 12 * p;
 
-    // The segment counts must add up to the point count.
+    // The segment counts must add up to the point count (64-bit sums: a
+    // default of 2^32-1 segments must not wrap to 0 points per strand).
+    const auto points_of = [&](std::uint32_t i) -> std::uint64_t {
+        return 1 + std::uint64_t{(flags & kHasSegments) ? in.get<std::uint16_t>(seg_at + 2 * i)
+                                                         : default_segments};
+    };
     std::uint64_t total = 0;
-    for (std::uint32_t i = 0; i < strands; ++i)
-        total += 1 + ((flags & kHasSegments) ? in.get<std::uint16_t>(seg_at + 2 * i) : default_segments);
+    if (flags & kHasSegments) {
+        for (std::uint32_t i = 0; i < strands; ++i) total += points_of(i);
+    } else {
+        total = s * (1 + std::uint64_t{default_segments});  // < 2^65 / 2: no wrap
+    }
     if (total != points)
         in.fail(flags & kHasSegments ? seg_at : 16,
                 "strand segment counts give " + std::to_string(total) + " points, header says " +
                     std::to_string(points));
+    // Every strand has at least one point, so points >= strands and both are
+    // bounded by the file size (checked above) before anything is reserved.
 
     LoadedCurves out;
     out.has_radius = true;
@@ -63,9 +73,8 @@ LoadedCurves load_hair(const std::filesystem::path& file) {
     StrandBuilder build(out.strands, file.string());
     std::size_t k = 0;
     for (std::uint32_t i = 0; i < strands; ++i) {
-        const std::uint32_t n =
-            1 + ((flags & kHasSegments) ? in.get<std::uint16_t>(seg_at + 2 * i) : default_segments);
-        for (std::uint32_t j = 0; j < n; ++j, ++k) {
+        const std::uint64_t n = points_of(i);
+        for (std::uint64_t j = 0; j < n; ++j, ++k) {
             const std::size_t at = pts_at + 12 * k;
             const Vec3 pos(in.get<float>(at), in.get<float>(at + 4), in.get<float>(at + 8));
             const float thickness =

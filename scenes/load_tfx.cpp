@@ -32,12 +32,13 @@ LoadedCurves load_tfx(const std::filesystem::path& file) {
         in.fail(8, "vertices per strand is " + std::to_string(per_strand) + ", need at least 2");
     if (offset < header_bytes)
         in.fail(offset_field, "vertex offset " + std::to_string(offset) + " lies inside the header");
-    const std::uint64_t need = std::uint64_t{strands} * per_strand * stride;
-    if (offset + need > in.size())
-        in.fail(4, "header counts (" + std::to_string(strands) + " strands x " +
-                       std::to_string(per_strand) + " vertices from byte " + std::to_string(offset) +
-                       ") need " + std::to_string(offset + need) + " bytes, file has " +
-                       std::to_string(in.size()));
+    // strands x per_strand x stride can pass 2^64: compare the vertex count
+    // against what the file can hold instead of multiplying out.
+    const std::uint64_t vertices = std::uint64_t{strands} * per_strand;  // < 2^64
+    in.require_records(offset, vertices, stride,
+                       "header counts (" + std::to_string(strands) + " strands x " +
+                           std::to_string(per_strand) + " vertices)",
+                       4);
 
     LoadedCurves out;
     const std::size_t total = std::size_t{strands} * per_strand;

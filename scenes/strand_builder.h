@@ -11,6 +11,10 @@
 
 namespace rtc {
 
+// Coordinates and radii beyond this are rejected: boxes, squared distances
+// and camera framing stay finite in float (1e18^2 = 1e36 < FLT_MAX).
+inline constexpr float kMaxCoordinate = 1e18f;
+
 class StrandBuilder {
 public:
     explicit StrandBuilder(Strands& out, std::string file) : out_(out), file_(std::move(file)) {}
@@ -21,7 +25,11 @@ public:
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw InputError(file_ + ": " + where() + ": non-finite coordinate in strand " +
                              std::to_string(out_.strand_count()));
-        if (!std::isfinite(radius) || radius < 0.0f)
+        if (std::abs(p.x) > kMaxCoordinate || std::abs(p.y) > kMaxCoordinate ||
+            std::abs(p.z) > kMaxCoordinate)
+            throw InputError(file_ + ": " + where() + ": coordinate beyond +-1e18 in strand " +
+                             std::to_string(out_.strand_count()));
+        if (!std::isfinite(radius) || radius < 0.0f || radius > kMaxCoordinate)
             throw InputError(file_ + ": " + where() + ": bad radius " + std::to_string(radius) +
                              " in strand " + std::to_string(out_.strand_count()));
         out_.points.push_back(p);

@@ -18,8 +18,23 @@ struct PlanHandle {
     std::shared_ptr<const RunPlan> plan;
 };
 
-PlanHandle make_plan(const std::string& text, const std::string& file, const std::vector<std::string>& sets) {
-    return {std::make_shared<const RunPlan>(plan_runs(parse_json_text(text, file), file, sets))};
+// The CLI's --max-rays, --max-memory, --force (and the sweep size ceiling).
+WorkLimits limits_from(const py::dict& d) {
+    WorkLimits l;
+    for (const auto& [key, value] : d) {
+        const std::string k = py::str(key);
+        if (k == "max_rays") l.max_rays = value.cast<double>();
+        else if (k == "max_memory") l.max_memory = value.cast<double>();
+        else if (k == "max_sweep_points") l.max_sweep_points = value.cast<double>();
+        else if (k == "force") l.force = value.cast<bool>();
+        else throw std::invalid_argument("limits: unknown key " + k + " (max_rays, max_memory, max_sweep_points, force)");
+    }
+    return l;
+}
+
+PlanHandle make_plan(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
+                     const py::dict& limits) {
+    return {std::make_shared<const RunPlan>(plan_runs(parse_json_text(text, file), file, sets, limits_from(limits)))};
 }
 
 // The outputs the CLI writes for one run: report.json and, unless the config
@@ -28,6 +43,7 @@ void write_outputs(const RunResult& r, const std::string& dir) {
     std::filesystem::create_directories(dir);
     write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
     if (r.config.output.images) write_images(r, dir);
+    (void)write_break_even_maps(r, dir);
 }
 
 RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, bool progress,
@@ -49,10 +65,12 @@ RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, b
     return {run};
 }
 
-std::string summary(const std::vector<RunHandle>& runs, const std::string& format) {
-    std::vector<RunResult> copies;  // summary_table reads totals only
+std::string summary(const std::vector<RunHandle>& runs, const std::string& format, const std::string& table) {
+    std::vector<RunResult> copies;  // the tables read totals only
     for (const RunHandle& h : runs) copies.push_back(*h.run);
-    const Table t = summary_table(copies);
+    if (table != "summary" && table != "speedups")
+        throw std::invalid_argument("table: expected summary or speedups, got " + table);
+    const Table t = table == "summary" ? summary_table(copies) : speedup_table(copies);
     if (format == "console") return t.to_console();
     if (format == "csv") return t.to_csv();
     if (format == "markdown") return t.to_markdown();
@@ -63,12 +81,24 @@ std::string summary(const std::vector<RunHandle>& runs, const std::string& forma
 
 void bind_run(py::module_& m) {
     py::class_<PlanHandle>(m, "Plan", "A config's runs, planned and parsed as the CLI does.")
-        .def_static("from_file", [](const std::string& path, const std::vector<std::string>& sets) {
-            return make_plan(read_text_file(path), path, sets);
-        }, py::arg("path"), py::arg("sets") = std::vector<std::string>{})
+        .def_static("from_file", [](const std::string& path, const std::vector<std::string>& sets,
+                                    const py::dict& limits) {
+            return make_plan(read_text_file(path), path, sets, limits);
+        }, py::arg("path"), py::arg("sets") = std::vector<std::string>{}, py::arg("limits") = py::dict(),
+           "limits: max_rays, max_memory (bytes), max_sweep_points, force (the CLI's options).")
         .def_static("from_json", &make_plan, py::arg("text"), py::arg("file"),
-                    py::arg("sets") = std::vector<std::string>{},
+                    py::arg("sets") = std::vector<std::string>{}, py::arg("limits") = py::dict(),
                     "`file` names the config in messages; relative paths resolve beside it.")
+        .def_property_readonly("estimate", [](const PlanHandle& h) {
+            const WorkEstimate& w = h.plan->work;
+            py::dict d;
+            d["rays"] = w.rays;
+            d["primitives"] = w.primitives;
+            d["memory_bytes"] = w.memory_bytes;
+            d["rays_detail"] = w.rays_detail;
+            d["memory_detail"] = w.memory_detail;
+            return d;
+        }, "The work estimate the limits were checked against (rays over every method and point).")
         .def("__len__", [](const PlanHandle& h) { return h.plan->points.size(); })
         .def_property_readonly("file", [](const PlanHandle& h) { return h.plan->file; })
         .def_property_readonly("config_json", [](const PlanHandle& h) { return h.plan->config.dump(); },
@@ -78,7 +108,8 @@ void bind_run(py::module_& m) {
         .def("label", [](const PlanHandle& h, std::size_t i) { return h.plan->points.at(i).label; })
         .def("run", &run_plan_point, py::arg("index"), py::arg("threads") = 0, py::arg("progress") = true,
              py::arg("record_warps") = false, py::arg("keep_rays") = false, py::arg("out_dir") = "",
-             "Traces point `index` (GIL released). With out_dir, writes what the CLI writes there.");
+             "Traces point `index` (GIL released) under the plan's limits. With out_dir, writes what the CLI "
+             "writes there.");
 
     py::class_<RunHandle>(m, "Run", "One traced run (a RunResult).")
         .def("report_json", [](const RunHandle& h, int indent) { return report_json(*h.run).dump(indent); },
@@ -86,7 +117,7 @@ void bind_run(py::module_& m) {
         .def("write_outputs", [](const RunHandle& h, const std::string& dir) {
             py::gil_scoped_release release;
             write_outputs(*h.run, dir);
-        }, py::arg("dir"), "report.json and the images, as the CLI writes them.")
+        }, py::arg("dir"), "report.json, the images and break-even maps, as the CLI writes them.")
         .def_property_readonly("name", [](const RunHandle& h) { return h.run->config.name; })
         .def_property_readonly("file", [](const RunHandle& h) { return h.run->config.file; })
         .def_property_readonly("baseline", [](const RunHandle& h) { return h.run->config.baseline; })
@@ -133,8 +164,9 @@ void bind_run(py::module_& m) {
         }, "Drops the per-pixel data (as the CLI does for finished sweep points). Only before any "
            "array viewing them was handed out: rtcsim.sweep calls it right after tracing.");
 
-    m.def("summary_table", &summary, py::arg("runs"), py::arg("format") = "console",
-          "The CLI's summary table over runs: console, csv or markdown.");
+    m.def("summary_table", &summary, py::arg("runs"), py::arg("format") = "console", py::arg("table") = "summary",
+          "The CLI's tables over runs: summary (summary.*, the terminal) or speedups (speedups.*, every "
+          "method under every preset); format console, csv or markdown.");
 }
 
 }  // namespace rtc::py_bind

@@ -35,16 +35,19 @@ def _sets(sets):
     return [str(s) for s in sets]
 
 
-def plan(config, sets=None, base=None):
+def plan(config, sets=None, base=None, limits=None):
     """The runs of a config, planned as the CLI plans them (overrides, sweep,
-    strict parsing). `config` is a path or a dict; for a dict, `base` names it
-    in messages and relative paths resolve beside it (default: "<dict>",
-    paths relative to the current directory)."""
+    strict parsing, work estimate). `config` is a path or a dict; for a dict,
+    `base` names it in messages and relative paths resolve beside it
+    (default: "<dict>", paths relative to the current directory). `limits`:
+    {"max_rays", "max_memory" (bytes), "max_sweep_points", "force"}, the
+    CLI's --max-rays, --max-memory and --force (same defaults)."""
+    limits = dict(limits or {})
     if isinstance(config, (str, os.PathLike)):
-        return _rtcsim.Plan.from_file(os.fspath(config), _sets(sets))
+        return _rtcsim.Plan.from_file(os.fspath(config), _sets(sets), limits)
     if isinstance(config, Mapping):
         text = json.dumps(config, default=_json_default)
-        return _rtcsim.Plan.from_json(text, os.fspath(base) if base else "<dict>", _sets(sets))
+        return _rtcsim.Plan.from_json(text, os.fspath(base) if base else "<dict>", _sets(sets), limits)
     raise TypeError(f"config: expected a path or a dict, got {type(config).__name__}")
 
 
@@ -56,7 +59,8 @@ def _threads(threads):
     return int(threads)
 
 
-def run(config, threads=None, progress=True, *, sets=None, base=None, out=None, record_warps=False):
+def run(config, threads=None, progress=True, *, sets=None, base=None, out=None, record_warps=False,
+        limits=None):
     """Traces one run and returns a Result.
 
     config: a config file or a dict (the schema of configs/README.md); a
@@ -67,10 +71,11 @@ def run(config, threads=None, progress=True, *, sets=None, base=None, out=None, 
     out: a directory to write what the CLI writes (report.json, images, and
         rays/hits files when the config asks for them).
     record_warps: keep every wave, so warp presets can re-price it (price()).
+    limits: the CLI's work ceilings, e.g. {"max_rays": 1e11} or {"force": True}.
     Rays and hits are kept (result.method(m).rays / .hits) when the config's
     output block asks for them. Raises rtcsim.InputError on bad input.
     """
-    p = plan(config, sets, base)
+    p = plan(config, sets, base, limits)
     if len(p) != 1:
         raise ValueError(f"{p.file}: /sweep: {len(p)} sweep points; rtcsim.sweep() runs them all")
     return _run_point(p, 0, threads, progress, out, record_warps)
@@ -82,12 +87,13 @@ def _run_point(p, index, threads, progress, out, record_warps):
     return Result(handle)
 
 
-def sweep(config, threads=None, progress=True, *, sets=None, base=None, record_warps=False, keep_pixels=False):
+def sweep(config, threads=None, progress=True, *, sets=None, base=None, record_warps=False, keep_pixels=False,
+          limits=None):
     """Runs every point of a config's sweep (one point without a sweep) and
     returns a list of Results in the CLI's order. Like the CLI, finished
     points keep their totals but drop their per-pixel data unless
     keep_pixels is set."""
-    p = plan(config, sets, base)
+    p = plan(config, sets, base, limits)
     results = []
     for i in range(len(p)):
         if progress and len(p) > 1:
@@ -188,8 +194,10 @@ def calibrate(results, block=None, *, base=None):
     return _rtcsim.calibrate([r._run for r in results], text, file)
 
 
-def summary_table(results, format="console"):
-    """The CLI's summary table over results: "console", "csv" or "markdown"."""
+def summary_table(results, format="console", table="summary"):
+    """The CLI's tables over results: "summary" (the terminal table,
+    summary.csv/.md) or "speedups" (every method under every preset,
+    speedups.csv/.md); format "console", "csv" or "markdown"."""
     if isinstance(results, Result):
         results = [results]
-    return _rtcsim.summary_table([r._run for r in results], format)
+    return _rtcsim.summary_table([r._run for r in results], format, table)

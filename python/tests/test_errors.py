@@ -16,6 +16,7 @@ BAD_SETS = [
     ["cost=\"no/such/preset.json\""],
     ["workload.type=\"film\""],
     ["sweep={\"scene.tilt_deg\": []}"],
+    ["workload.spp=10000000"],  # the work estimate: above --max-rays
 ]
 
 
@@ -26,6 +27,16 @@ def test_bad_config_message_matches_cli(simulate, sets, tmp_path):
     with pytest.raises(rtcsim.InputError) as err:
         rtcsim.run(TINY, progress=False, sets=sets)
     assert str(err.value) == cli.stderr.strip()
+
+
+def test_limits_as_the_cli():
+    sets = ["workload.spp=10000000"]
+    p = rtcsim.plan(TINY, sets, limits={"force": True})  # planned, not run
+    assert p.estimate["rays"] > 1e10
+    with pytest.raises(rtcsim.InputError, match="--max-rays"):
+        rtcsim.plan(TINY, ["workload.spp=100"], limits={"max_rays": 1000})
+    with pytest.raises(ValueError, match="unknown key"):
+        rtcsim.plan(TINY, limits={"max_ray": 1})
 
 
 def test_missing_file_matches_cli(simulate, tmp_path):

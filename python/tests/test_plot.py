@@ -54,6 +54,36 @@ def test_maps_from_a_live_result(tiny, tmp_path):
     saved(plot.cycle_breakdown(tiny), tmp_path / "breakdown.svg")
 
 
+def test_break_even_matches_pricing(tiny, tmp_path):
+    fig = plot.break_even(tiny, "context_switch", ["instance_transform"], (10, 1000), (1, 100), cells=8)
+    rgb = fig.axes[0].images[0].get_array()
+    assert rgb.shape == (8, 8, 3)
+    # Corners: cheap switches favour ref, dear ones obb (the masquerade avoids them).
+    model = rtcsim.load_cost_model("turing-guess").copy()
+    for (iy, ix) in ((0, 0), (7, 7), (0, 7), (7, 0)):
+        c = model.cycles
+        c[rtcsim.EVENT_INDEX["context_switch"]] = 10 * 100 ** ((ix + 0.5) / 8)
+        c[rtcsim.EVENT_INDEX["instance_transform"]] = 100 ** ((iy + 0.5) / 8)
+        model.cycles = c
+        cycles = {m: rtcsim.price(tiny[m], model).total_cycles for m in ("ref", "obb")}
+        best = min(cycles, key=cycles.get)
+        leg = fig.axes[0].get_legend()
+        handles = getattr(leg, "legend_handles", None) or leg.legendHandles  # matplotlib < 3.7
+        legend = {t.get_text(): h.get_color() for t, h in zip(leg.get_texts(), handles)}
+        want = np.array(__import__("matplotlib").colors.to_rgb(legend[best]))
+        close = max(cycles.values()) / min(cycles.values()) < 1.1
+        assert np.allclose(rgb[iy, ix], 0.55 * want + 0.45 if close else want)
+    saved(fig, tmp_path / "break_even.png")
+    config = dict(tiny.config, break_even=[{"name": "a", "preset": "turing-guess", "cells": 4,
+                                            "x": {"events": ["context_switch"], "min": 10, "max": 1000},
+                                            "y": {"events": ["ray"], "min": 10, "max": 1000}}])
+    tiny.data["config"], saved_config = config, tiny.data["config"]
+    try:
+        assert list(plot.break_even_maps(tiny)) == ["a"]
+    finally:
+        tiny.data["config"] = saved_config
+
+
 def test_figures_from_reports(sweep_dir, tmp_path):
     runs = rtcsim.load_reports(sweep_dir)
     assert len(runs) == 6

@@ -31,17 +31,18 @@ def warp_preset(path, lanes, context_switch):
 
 
 def test_reprice_equals_rerun_per_ray():
+    other = "turing-per-ray-calibrated"
     guess = run_with([f"{rtcsim.PRESET_DIR}/turing-guess.json"])
-    calibrated = run_with([f"{rtcsim.PRESET_DIR}/turing-calibrated.json"])
+    calibrated = run_with([f"{rtcsim.PRESET_DIR}/{other}.json"])
     for name in ("ref", "obb"):
-        again = rtcsim.price(guess[name], "turing-calibrated")
+        again = rtcsim.price(guess[name], other)
         live = calibrated[name].priced[0]
         assert again.total_cycles == live.total_cycles
         assert np.array_equal(again.by_event, live.by_event)
         # The same from the totals alone, from a dict, and per pixel.
-        assert rtcsim.price(guess[name].totals, "turing-calibrated").total_cycles == live.total_cycles
-        assert rtcsim.price(guess[name].events, "turing-calibrated").total_cycles == live.total_cycles
-        per_pixel = rtcsim.price(guess[name].pixel_counts, "turing-calibrated")
+        assert rtcsim.price(guess[name].totals, other).total_cycles == live.total_cycles
+        assert rtcsim.price(guess[name].events, other).total_cycles == live.total_cycles
+        per_pixel = rtcsim.price(guess[name].pixel_counts, other)
         assert per_pixel.shape == (24, 24)
         assert per_pixel.sum() == pytest.approx(live.total_cycles, rel=1e-12)
     assert guess.speedup("obb") != calibrated.speedup("obb")

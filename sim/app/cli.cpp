@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include <charconv>
+#include <cmath>
 
 namespace rtc {
 
@@ -45,6 +46,11 @@ options:
                         --set workload.spp=1 --set scene.tilt_deg=30
                         --set 'methods=["obb"]'  (value parsed as JSON, else a string)
   --quiet               no effective-config echo, no progress bars
+  --max-rays N          refuse runs estimated to trace more than N rays in all
+                        (every method and sweep point; default 1e10)
+  --max-memory SIZE     refuse runs estimated to need more memory, e.g. 8G or
+                        512M (default: 3/4 of physical memory)
+  --force               run even above those ceilings (and sweeps above 10,000 points)
 
 configs: configs/runs/*.json, keys documented in configs/README.md
 outputs: report.json, summary.csv, summary.md, *.png heat maps, *.svg plots
@@ -74,6 +80,20 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
             if (ec != std::errc() || p != v.data() + v.size() || n == 0 || n > 1024)
                 throw InputError("simulate: --threads: expected a positive integer, got \"" + v + "\"");
             o.threads = n;
+        } else if (a == "--max-rays") {
+            const std::string& v = value(i, a);
+            double n = 0.0;
+            const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+            if (ec != std::errc() || p != v.data() + v.size() || !(n >= 1.0) || !std::isfinite(n))
+                throw InputError("simulate: --max-rays: expected a number >= 1 such as 1e9, got \"" + v + "\"");
+            o.limits.max_rays = n;
+        } else if (a == "--max-memory") {
+            const std::string& v = value(i, a);
+            const std::optional<double> n = parse_byte_size(v);
+            if (!n) throw InputError("simulate: --max-memory: expected a size such as 8G or 512M, got \"" + v + "\"");
+            o.limits.max_memory = *n;
+        } else if (a == "--force") {
+            o.limits.force = true;
         } else if (a == "--set") {
             o.sets.push_back(value(i, a));
         } else if (a.rfind("--set=", 0) == 0) {

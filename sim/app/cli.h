@@ -1,6 +1,8 @@
 // Command-line parsing for `simulate` (kept apart from main so it is tested).
 #pragma once
 
+#include "sim/run/work_estimate.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@ struct CliOptions {
     unsigned threads = 0;            // 0: all cores
     std::vector<std::string> sets;   // key.path=value overrides, in order
     bool quiet = false;
+    WorkLimits limits;               // --max-rays, --max-memory, --force
 };
 
 // Throws InputError with a one-line message on bad arguments.

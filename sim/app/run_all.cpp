@@ -8,6 +8,7 @@
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
 #include "sim/config/sweep.h"
+#include "sim/run/work_estimate.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -67,19 +68,29 @@ void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
 
 }  // namespace
 
-RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vector<std::string>& sets) {
+RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vector<std::string>& sets,
+                  const WorkLimits& limits) {
     if (!config.is_object()) throw InputError(file + ": /: expected a JSON object");
     RunPlan plan;
     plan.file = file;
+    plan.limits = limits;
     for (const std::string& s : sets) apply_set(config, s, file);
+    (void)sweep_point_count(config, file, limits);  // before expanding it
     plan.points = expand_sweep(config, file);
     // Parse every point before any work, so a bad value fails in a second.
-    for (const SweepPoint& p : plan.points) plan.parsed.push_back(parse_run_config(p.config, file));
+    std::vector<WorkEstimate> estimates;
+    for (const SweepPoint& p : plan.points) {
+        plan.parsed.push_back(parse_run_config(p.config, file));
+        estimates.push_back(estimate_config_work(plan.parsed.back()));
+    }
+    plan.work = combine_work(estimates);
+    check_work(plan.work, limits, file);
     plan.config = std::move(config);
     return plan;
 }
 
-RunResult run_point(const RunPlan& plan, std::size_t i, const RunContext& context) {
+RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context) {
+    context.limits = plan.limits;
     RunResult r = run_simulation(plan.parsed.at(i), plan.points.at(i).config, context);
     r.sweep_values = plan.points[i].values;
     r.sweep_label = plan.points[i].label;
@@ -87,16 +98,21 @@ RunResult run_point(const RunPlan& plan, std::size_t i, const RunContext& contex
 }
 
 int run_all(const CliOptions& cli) {
-    const RunPlan plan = plan_runs(parse_json_text(read_text_file(cli.config), cli.config), cli.config, cli.sets);
+    const RunPlan plan =
+        plan_runs(parse_json_text(read_text_file(cli.config), cli.config), cli.config, cli.sets, cli.limits);
     const nlohmann::json& config = plan.config;
     const std::vector<SweepPoint>& points = plan.points;
     const std::vector<RunConfig>& parsed = plan.parsed;
+    const WorkEstimate& work = plan.work;
     const std::string out = cli.out ? *cli.out : "out/" + parsed.front().name;
     make_dir(out);
     if (!cli.quiet) {
         std::cerr << "simulate " << cli.config << " -> " << out << "\neffective configuration:\n"
                   << config.dump(2) << "\n";
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
+        std::cerr << "estimate: " << count_text(work.rays) << " rays, "
+                  << (work.primitives > 0 ? count_text(work.primitives) + " primitives, " : std::string())
+                  << format_bytes(work.memory_bytes) << " of memory\n";
     }
     std::vector<RunResult> runs;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -115,6 +131,7 @@ int run_all(const CliOptions& cli) {
         RunResult r = run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        (void)write_break_even_maps(r, dir);
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
@@ -124,6 +141,9 @@ int run_all(const CliOptions& cli) {
         const Table t = summary_table(runs);
         write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
         write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
+        const Table st = speedup_table(runs);
+        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
+        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);

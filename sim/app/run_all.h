@@ -6,6 +6,7 @@
 #include "sim/config/run_config.h"
 #include "sim/config/sweep.h"
 #include "sim/run/simulation.h"
+#include "sim/run/work_estimate.h"
 
 #include <nlohmann/json.hpp>
 
@@ -23,14 +24,18 @@ struct RunPlan {
     nlohmann::json config;           // with the overrides, still with its sweep block
     std::vector<SweepPoint> points;  // one (empty label) for a run without a sweep
     std::vector<RunConfig> parsed;   // per point
+    WorkLimits limits;               // checked here and again once each scene is loaded
+    WorkEstimate work;               // over every point
 };
 
-// Throws InputError naming `file` and the JSON path.
+// Throws InputError naming `file` and the JSON path, also when the work
+// estimate exceeds `limits` (the CLI's --max-rays, --max-memory, --force).
 [[nodiscard]] RunPlan plan_runs(nlohmann::json config, const std::string& file,
-                                const std::vector<std::string>& sets = {});
+                                const std::vector<std::string>& sets = {}, const WorkLimits& limits = {});
 
-// Runs point `i` of a plan (its sweep values and label set on the result).
-[[nodiscard]] RunResult run_point(const RunPlan& plan, std::size_t i, const RunContext& context);
+// Runs point `i` of a plan under the plan's limits (its sweep values and
+// label set on the result).
+[[nodiscard]] RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context);
 
 // Returns the process exit code. Throws InputError on bad input.
 int run_all(const CliOptions& cli);

@@ -24,12 +24,28 @@ BuildOptions read_build(const JsonReader& r, BuildOptions o) {
     return o;
 }
 
+BreakEvenAxis read_axis(const JsonReader& r) {
+    r.allow_only({"events", "min", "max"});
+    BreakEvenAxis a;
+    const nlohmann::json* ev = r.has("events") ? &r.json()["events"] : nullptr;
+    if (!ev || !ev->is_array() || ev->empty()) r.fail("events", "expected a non-empty list of event names");
+    for (std::size_t i = 0; i < ev->size(); ++i) {
+        const auto e = (*ev)[i].is_string() ? event_from_name((*ev)[i].get<std::string>()) : std::nullopt;
+        if (!e) r.fail("events/" + std::to_string(i), "unknown event " + describe((*ev)[i]) + " (see core/events.h)");
+        a.events.push_back(*e);
+    }
+    a.min = r.number("min", std::nullopt, 1e-6, 1e9);
+    a.max = r.number("max", std::nullopt, 1e-6, 1e9);
+    if (!(a.max > a.min)) r.fail("max", "must be > min");
+    return a;
+}
+
 }  // namespace
 
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
     const JsonReader r(config, file);
     r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
-                  "cost", "memory", "workload", "output", "calibrate"});
+                  "cost", "memory", "workload", "output", "calibrate", "break_even"});
     RunConfig c;
     c.file = file;
     c.name = r.string("name", std::filesystem::path(file).stem().string());
@@ -115,6 +131,22 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         c.output.write_hits = o.boolean("hits", false);
     }
     if (r.has("calibrate")) c.calibrate = config["calibrate"];
+    if (r.has("break_even")) {
+        const nlohmann::json& list = config["break_even"];
+        if (!list.is_array()) r.fail("break_even", "expected a list of maps");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const JsonReader b(list[i], file, "/break_even/" + std::to_string(i));
+            if (!list[i].is_object()) b.fail("", "expected an object");
+            b.allow_only({"name", "preset", "x", "y", "cells"});
+            BreakEvenSpec spec;
+            spec.name = b.string("name", std::nullopt);
+            spec.preset = b.string("preset", std::nullopt);
+            spec.x = read_axis(b.child("x"));
+            spec.y = read_axis(b.child("y"));
+            spec.cells = static_cast<int>(b.integer("cells", 48, 2, 512));
+            c.break_even.push_back(std::move(spec));
+        }
+    }
     return c;
 }
 

@@ -19,6 +19,19 @@ struct OutputOptions {
     bool write_hits = false;  // hits_<method>.bin: each method's hit per ray (12 B each)
 };
 
+// A break-even map (sim/report): sweep the cost of two event groups of one
+// cost preset on log axes and show, per cell, which method is cheapest.
+struct BreakEvenAxis {
+    std::vector<Event> events;  // all set to the swept value
+    double min = 1.0, max = 100.0;
+};
+struct BreakEvenSpec {
+    std::string name;    // file name: break_even_<name>.png
+    std::string preset;  // a cost preset's name, one of the run's
+    BreakEvenAxis x, y;
+    int cells = 48;      // per axis
+};
+
 struct RunConfig {
     std::string file;                 // where the config came from (for messages)
     std::string name;                 // default: the config file's stem
@@ -35,6 +48,7 @@ struct RunConfig {
     WorkloadDesc workload;
     OutputOptions output;
     nlohmann::json calibrate;         // optional `calibrate` block (null when absent)
+    std::vector<BreakEvenSpec> break_even;  // optional `break_even` list
 };
 
 // Parses one (sweep-expanded) config. Throws InputError "<file>: <path>: ...".

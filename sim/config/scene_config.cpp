@@ -8,6 +8,7 @@
 #include "scenes/hair_gen.h"
 #include "scenes/loaders.h"
 
+#include <cmath>
 #include <limits>
 
 namespace rtc {
@@ -24,13 +25,13 @@ Scene bundle_scene(const JsonReader& j) {
     j.allow_only({"type", "name", "count", "radius", "tilt_deg", "seed", "bundle_radius", "length"});
     BundleDesc d;
     d.count = static_cast<std::uint32_t>(j.integer("count", d.count, 1, kMaxCount));
-    d.bundle_radius = static_cast<float>(j.positive("bundle_radius", d.bundle_radius));
-    d.radius = static_cast<float>(j.positive("radius", d.radius));
+    d.bundle_radius = j.length("bundle_radius", d.bundle_radius);
+    d.radius = j.length("radius", d.radius);
     if (!(d.radius < d.bundle_radius))
         j.fail("radius", "must be smaller than bundle_radius (" + describe(d.bundle_radius) + ")");
     d.tilt_deg = static_cast<float>(j.number("tilt_deg", d.tilt_deg, -360.0, 360.0));
     d.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
-    d.length = static_cast<float>(j.positive("length", d.length));
+    d.length = j.length("length", d.length);
     Scene s = make_bundle(d);
     if (j.has("name")) s.name = j.string("name", std::nullopt);
     return s;
@@ -49,10 +50,14 @@ Scene hair_scene(const JsonReader& j) {
                                      {"mesh", "mesh"}, {"lock_center", "lock"}, {"lock_radius", "lock"},
                                      {"lock_axis", "lock"}})
         if (j.has(key) && emitter != owner) j.fail(key, std::string("only with \"emitter\": \"") + owner + "\"");
-    d.sphere_radius = static_cast<float>(j.positive("sphere_radius", d.sphere_radius));
+    d.sphere_radius = j.length("sphere_radius", d.sphere_radius);
     d.sphere_center = to_vec3(j.vec3("sphere_center", std::array<double, 3>{0, 0, 0}));
-    d.lock_radius = static_cast<float>(j.positive("lock_radius", d.lock_radius));
+    for (const float x : {d.sphere_center.x, d.sphere_center.y, d.sphere_center.z})
+        if (std::abs(x) > JsonReader::kMaxLength) j.fail("sphere_center", "components must lie in [-1e18, 1e18]");
+    d.lock_radius = j.length("lock_radius", d.lock_radius);
     d.lock_center = to_vec3(j.vec3("lock_center", std::array<double, 3>{0, 0, 0}));
+    for (const float x : {d.lock_center.x, d.lock_center.y, d.lock_center.z})
+        if (std::abs(x) > JsonReader::kMaxLength) j.fail("lock_center", "components must lie in [-1e18, 1e18]");
     d.lock_axis = to_vec3(j.vec3("lock_axis", std::array<double, 3>{0, -1, 0}));
     if (!(glm::length(d.lock_axis) > 0.0f)) j.fail("lock_axis", "must not be zero");
     const std::string style = j.choice("style", "straight", {"straight", "wavy", "curly"});
@@ -61,14 +66,14 @@ Scene hair_scene(const JsonReader& j) {
     d.points_per_strand = static_cast<std::uint32_t>(j.integer("points_per_strand", d.points_per_strand, 2, 65536));
     if (std::uint64_t{d.strands} * d.points_per_strand >= (std::uint64_t{1} << 32))
         j.fail("strands", "strands x points_per_strand must stay below 2^32");
-    d.length = static_cast<float>(j.positive("length", d.length));
-    d.radius = static_cast<float>(j.positive("radius", d.radius));
-    d.tip_radius = static_cast<float>(j.number("tip_radius", d.radius, 0.0));
+    d.length = j.length("length", d.length);
+    d.radius = j.length("radius", d.radius);
+    d.tip_radius = j.length("tip_radius", d.radius, /*allow_zero=*/true);
     d.lean = static_cast<float>(j.number("lean", d.lean, 0.0, 10.0));
-    d.wave_amplitude = static_cast<float>(j.number("wave_amplitude", d.wave_amplitude, 0.0));
-    d.waves = static_cast<float>(j.number("waves", d.waves, 0.0));
-    d.curl_radius = static_cast<float>(j.number("curl_radius", d.curl_radius, 0.0));
-    d.curl_turns = static_cast<float>(j.number("curl_turns", d.curl_turns, 0.0));
+    d.wave_amplitude = static_cast<float>(j.number("wave_amplitude", d.wave_amplitude, 0.0, 1e3));  // x length
+    d.waves = static_cast<float>(j.number("waves", d.waves, 0.0, 1e6));
+    d.curl_radius = static_cast<float>(j.number("curl_radius", d.curl_radius, 0.0, 1e3));  // x length
+    d.curl_turns = static_cast<float>(j.number("curl_turns", d.curl_turns, 0.0, 1e6));
     d.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
     d.with_mesh = j.boolean("with_mesh", d.with_mesh);
     if (d.with_mesh && d.emitter == HairEmitter::Lock) j.fail("with_mesh", "a lock has no emitter mesh");
@@ -95,18 +100,22 @@ Strands curves_from_file(const JsonReader& c) {
     if (loaded.strands.strand_count() == 0) c.fail("path", "no strands in " + path.string());
     const double scale = c.positive("radius_scale", 1.0);
     if (c.has("radius")) {
-        const auto r = static_cast<float>(c.positive("radius", std::nullopt));
+        const float r = c.length("radius", std::nullopt);
         loaded.strands.radii.assign(loaded.strands.radii.size(), r);
     } else if (!loaded.has_radius) {
         c.fail("radius", "missing: " + path.string() + " carries no radius, so one must be set");
     }
-    for (float& r : loaded.strands.radii) r = static_cast<float>(r * scale);
+    for (float& r : loaded.strands.radii) {
+        r = static_cast<float>(r * scale);
+        if (!(r <= JsonReader::kMaxLength))
+            c.fail("radius_scale", describe(scale) + " makes a radius exceed 1e18");
+    }
 
     FollowHairDesc f;
     f.per_guide = static_cast<std::uint32_t>(c.integer("follow_hairs", 0, 0, 64));
     if (f.per_guide > 0) {
-        f.spread = static_cast<float>(c.positive("follow_spread", std::nullopt));
-        f.tip_separation = static_cast<float>(c.number("follow_tip_separation", 1.0, 0.0));
+        f.spread = c.length("follow_spread", std::nullopt);
+        f.tip_separation = static_cast<float>(c.number("follow_tip_separation", 1.0, 0.0, 1e6));
         f.seed = static_cast<std::uint64_t>(c.integer("follow_seed", 1, 0, std::numeric_limits<long long>::max()));
         return add_follow_hairs(loaded.strands, f);
     }

@@ -38,6 +38,13 @@ void set_by_path(nlohmann::json& config, const std::string& dotted_path,
 }
 
 void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin) {
+    // Keys and bare-word values end up in the echoed config and the reports,
+    // which nlohmann can only write as UTF-8.
+    try {
+        (void)nlohmann::json(spec).dump();
+    } catch (const nlohmann::json::exception&) {
+        throw InputError(origin + ": --set: argument is not valid UTF-8");
+    }
     const auto eq = spec.find('=');
     if (eq == std::string::npos || eq == 0)
         throw InputError(origin + ": --set " + spec + ": expected key.path=value");

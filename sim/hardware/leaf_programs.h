@@ -6,6 +6,8 @@
 // there and keeps the closest hit.
 #pragma once
 
+#include "core/affine.h"
+#include "core/obb.h"
 #include "core/sinks.h"
 #include "core/traverse.h"
 #include "intersectors/capsule.h"
@@ -17,6 +19,7 @@
 
 #include <algorithm>
 #include <span>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -90,6 +93,26 @@ public:
         return run_program(index, ray, tmax);
     }
 
+    // Programs start with an Embree-style OBB test (curveNi_intersector.h):
+    // per primitive the map of its OBB onto the unit box; a ray that misses
+    // it (or enters it beyond the current hit) skips the program's body.
+    void set_leaf_obbs(std::span<const Affine> unit_from_world) { leaf_obbs_ = unit_from_world; }
+
+    // A hardware ray/LSS test in the RT unit (capsules and links are linear
+    // swept spheres: both end spheres and the tangent cone between them): no
+    // hand-over and no program; the closest hit is kept as for triangles.
+    float lss(std::uint32_t index, Ray ray, float tmax) {
+        sink_.on(Event::LssTest);
+        if constexpr (std::is_same_v<Prim, Capsule> || std::is_same_v<Prim, Link>) {
+            ray.tmax = tmax;
+            NullSink math;  // the shape's math; its cost is the LssTest event
+            const auto h = intersect(prims_[index], ray, math);
+            return h ? offer({h->t, h->normal, h->u, index, GeometryId::Curves}) : kInfinity;
+        } else {
+            throw std::logic_error("lss: only capsules and links are linear swept spheres");
+        }
+    }
+
     // Runs the deferred programs (world-space ray) and returns the closest hit.
     template <TraversalMode Mode>
     TraceHit finish(const Ray& ray) {
@@ -121,6 +144,14 @@ private:
 
     template <class ProgramSink>
     float program(std::uint32_t index, const Ray& ray, ProgramSink& sink) {
+        if (!leaf_obbs_.empty()) {
+            // The same float operations as the hardware's instance transform +
+            // unit-box test of the masquerade (obb), so the same rays pass.
+            sink.on(Event::LeafObbTest);
+            const Ray u = leaf_obbs_[index].ray(ray);
+            if (intersect_box(kUnitBox, u.origin, safe_inverse(u.direction), u.tmin, u.tmax) == kInfinity)
+                return kInfinity;
+        }
         sink.on(Event::IsCall);
         const auto h = run_intersection_program(prims_[index], ray, sink, options_);
         if (!h) return kInfinity;
@@ -134,6 +165,7 @@ private:
     TraceScratch& scratch_;
     Sink& sink_;
     TraceHit best_;
+    std::span<const Affine> leaf_obbs_;
 };
 
 }  // namespace rtc

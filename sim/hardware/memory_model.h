@@ -19,9 +19,15 @@ struct MemoryModel {
     double custom_prim_bytes = 32;  // per custom-primitive AABB in a BLAS leaf
     double triangle_bytes = 48;     // per triangle in a BLAS (hardware format)
     double instance_bytes = 250;    // per TLAS instance
+    double lss_prim_bytes = 32;     // per linear swept sphere in a BLAS (lss)
+    double obb_child_bytes = 24;    // extra per child box with its own 3x4 transform (obb-nodes)
+    double leaf_obb_bytes = 21;     // per primitive OBB read by a software leaf test (leaf-obb)
     std::array<double, 4> primitive_data_bytes{32, 32, 32, 64};  // per PrimitiveKind
     double mesh_vertex_bytes = 12, mesh_triangle_bytes = 12;     // shared mesh data
     std::uint64_t instance_limit = 1u << 24;
+    // True when instance_bytes is a measured whole (the instance structure's
+    // size over its instance count), so the TLAS nodes are inside it.
+    bool instance_includes_tlas_nodes = false;
     std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
 
     [[nodiscard]] double node_bytes(int width) const {
@@ -33,14 +39,19 @@ struct MemoryModel {
 // computed from the scene when the method is not built).
 struct StructureCounts {
     std::uint64_t tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    std::uint64_t lss_prims = 0;          // hardware LSS primitives
+    std::uint64_t oriented_children = 0;  // child boxes with their own transform
+    std::uint64_t leaf_obbs = 0;          // per-primitive OBBs for a software leaf test
     int width = 4;
 };
 
 struct MemoryBreakdown {
     double tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    double lss_prims = 0, oriented_children = 0, leaf_obbs = 0;
     double common = 0;  // primitive data + mesh, shared by every method
     [[nodiscard]] double acceleration() const {
-        return tlas_nodes + blas_nodes + instances + custom_prims + triangles;
+        return tlas_nodes + blas_nodes + instances + custom_prims + triangles + lss_prims +
+               oriented_children + leaf_obbs;
     }
     [[nodiscard]] double total() const { return acceleration() + common; }
 };

@@ -22,6 +22,22 @@ Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision) 
     return g;
 }
 
+namespace {
+
+BoundProxy proxy(const Vec3& p0, const Vec3& p1, float r) { return {{p0, p1, p1, p1}, std::max(r, 0.0f)}; }
+BoundProxy proxy(const Cylinder& c) { return proxy(c.p0, c.p1, c.radius); }
+BoundProxy proxy(const Capsule& c) { return proxy(c.p0, c.p1, c.radius); }
+BoundProxy proxy(const Link& k) { return proxy(k.p0, k.p1, std::max(k.r0, k.r1)); }
+BoundProxy proxy(const PhantomCurve& c) { return {c.cp, max_radius(c)}; }
+
+}  // namespace
+
+std::vector<BoundProxy> bound_proxies(const Geometry& g) {
+    std::vector<BoundProxy> out;
+    std::visit([&](const auto& v) { for (const auto& p : v) out.push_back(proxy(p)); }, g.prims);
+    return out;
+}
+
 Aabb geometry_bounds(const Geometry& g) {
     Aabb b;
     std::visit([&](const auto& v) { for (const auto& p : v) b.extend(bounds(p)); }, g.prims);

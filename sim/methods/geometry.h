@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/aabb.h"
+#include "core/obb_bvh.h"
 #include "intersectors/kinds.h"
 #include "intersectors/triangle.h"
 #include "scenes/convert.h"
@@ -22,6 +23,12 @@ struct Geometry {
 };
 
 [[nodiscard]] Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision);
+
+// Per primitive what the oriented-box builders bound (core/obb_bvh.h):
+// segments as their end points with the largest radius (a flat-capped
+// cylinder lies inside the capsule of its radius), curves as their control
+// points with the largest radius (convex hull property).
+[[nodiscard]] std::vector<BoundProxy> bound_proxies(const Geometry& geometry);
 
 // World bounds of every primitive and triangle (for camera framing).
 [[nodiscard]] Aabb geometry_bounds(const Geometry& geometry);

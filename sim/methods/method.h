@@ -68,7 +68,14 @@ struct MethodEntry {
     std::function<std::uint64_t(const Geometry&)> instance_count;
     // Throws std::invalid_argument on a primitive whose bounds are not finite.
     std::function<std::unique_ptr<BuiltMethod>(const Geometry&, const MethodOptions&)> build;
+    // Optional: why the method cannot represent this geometry (e.g. a
+    // hardware primitive that only fits some kinds), or empty when it can.
+    // A run reports such a method as n/a with that reason; build() throws.
+    std::function<std::string(const Geometry&)> not_applicable = nullptr;
 };
+
+// The reason `entry` cannot run on `g`, or empty.
+[[nodiscard]] std::string not_applicable_reason(const MethodEntry& entry, const Geometry& g);
 
 // Every method, built-in ones first, in registration order.
 [[nodiscard]] const std::vector<MethodEntry>& registered_methods();

@@ -9,7 +9,12 @@ namespace rtc {
 // name_method()` defined in sim/methods/name.cpp.
 #define RTCSIM_BUILTIN_METHODS(X) \
     X(ref)                        \
-    X(obb)
+    X(obb)                        \
+    X(leaf_obb)                   \
+    X(split)                      \
+    X(lss)                        \
+    X(obb_nodes)                  \
+    X(obb_quantized)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)
@@ -51,6 +56,10 @@ void register_method(MethodEntry entry) {
     if (find_method(entry.info.name))
         throw std::invalid_argument("register_method: a method named '" + entry.info.name + "' exists");
     registry().push_back(std::move(entry));
+}
+
+std::string not_applicable_reason(const MethodEntry& entry, const Geometry& g) {
+    return entry.not_applicable ? entry.not_applicable(g) : std::string();
 }
 
 std::string method_names_list() {

@@ -13,6 +13,16 @@ void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& 
     instances.push_back(make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{}));
 }
 
+ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g, const MethodOptions& o) {
+    std::vector<Bvh> blases;
+    blases.push_back(std::move(tree.bvh));
+    std::vector<BlasKind> kinds{BlasKind::Custom};
+    std::vector<Instance> instances{make_instance(0, 0, Affine{})};
+    add_mesh_blas(g, o, blases, kinds, instances);
+    return {{build_two_level(std::move(blases), std::move(instances), o.tlas), std::move(kinds)},
+            std::move(tree.frames)};
+}
+
 StructureCounts count_two_level(const TwoLevelStructures& s) {
     StructureCounts c;
     c.width = s.accel.tlas.width;
@@ -21,7 +31,9 @@ StructureCounts count_two_level(const TwoLevelStructures& s) {
     for (std::size_t b = 0; b < s.accel.blases.size(); ++b) {
         const Bvh& blas = s.accel.blases[b];
         c.blas_nodes += blas.node_count();
-        (s.blas_kind[b] == BlasKind::Triangles ? c.triangles : c.custom_prims) += blas.primitive_count();
+        const BlasKind k = s.blas_kind[b];
+        (k == BlasKind::Triangles ? c.triangles : k == BlasKind::Lss ? c.lss_prims : c.custom_prims) +=
+            blas.primitive_count();
     }
     return c;
 }

@@ -7,6 +7,7 @@
 //   static float custom_leaf(const PrimitiveQuery&, Programs&);
 #pragma once
 
+#include "core/obb_bvh.h"
 #include "core/two_level.h"
 #include "sim/methods/method.h"
 
@@ -14,7 +15,9 @@
 
 namespace rtc {
 
-enum class BlasKind : std::uint8_t { Custom, Triangles };
+// Custom: leaves are custom primitives (a hand-over each); Triangles: the
+// mesh; Lss: leaves are linear swept spheres tested in the RT unit.
+enum class BlasKind : std::uint8_t { Custom, Triangles, Lss };
 
 struct TwoLevelStructures {
     TwoLevel accel;
@@ -27,6 +30,17 @@ void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& 
 
 [[nodiscard]] StructureCounts count_two_level(const TwoLevelStructures& s);
 
+// The leaf dispatch every two-level method shares: triangles to the RT unit's
+// test, every other BLAS's primitives to Leaf::custom_leaf.
+template <class Leaf, class Programs>
+auto two_level_leaf(const TwoLevelStructures& s, Programs& programs) {
+    return [&s, &programs](const PrimitiveQuery& q) -> float {
+        if (s.blas_kind[q.instance.blas] == BlasKind::Triangles)
+            return programs.triangle(q.prim, q.object_ray, q.tmax);
+        return Leaf::custom_leaf(q, programs);
+    };
+}
+
 template <class Leaf>
 struct TwoLevelMethod {
     using Structures = TwoLevelStructures;
@@ -37,11 +51,59 @@ struct TwoLevelMethod {
     template <TraversalMode Mode, class Programs>
     static TraceHit trace(const Structures& s, Programs& programs, const Ray& ray) {
         programs.begin();
-        trace_two_level<Mode>(s.accel, ray, programs.sink(), [&](const PrimitiveQuery& q) -> float {
-            if (s.blas_kind[q.instance.blas] == BlasKind::Triangles)
-                return programs.triangle(q.prim, q.object_ray, q.tmax);
-            return Leaf::custom_leaf(q, programs);
-        });
+        trace_two_level<Mode>(s.accel, ray, programs.sink(), two_level_leaf<Leaf>(s, programs));
+        return programs.template finish<Mode>(ray);
+    }
+};
+
+// The leaf of methods whose program takes the world-space ray and the
+// primitive index straight from the BLAS leaf.
+struct WorldRayLeaf {
+    template <class Programs>
+    static float custom_leaf(const PrimitiveQuery& q, Programs& programs) {
+        return programs.custom(q.prim, q.world_ray, q.tmax);
+    }
+};
+
+// Two-level methods whose custom-primitive BLAS (BLAS 0) has oriented child
+// boxes (core/obb_bvh.h): obb-nodes (one transform per oriented child, priced
+// as extra bytes per child) and obb-quantized (one table rotation per node,
+// no extra bytes). The TLAS and the mesh BLAS are ref's.
+struct ObbTreeStructures {
+    TwoLevelStructures two_level;
+    ObbFrames frames;  // of BLAS 0's entries
+};
+
+// Wraps an oriented-box tree over the geometry's primitives (ids = primitive
+// indices) as BLAS 0 under an identity instance, plus the mesh BLAS.
+[[nodiscard]] ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g,
+                                                         const MethodOptions& o);
+
+struct ObbTreeMethod {
+    using Structures = ObbTreeStructures;
+
+    static StructureCounts count(const Structures& s) {
+        StructureCounts c = count_two_level(s.two_level);
+        if (s.frames.style == ObbStyle::PerChild) c.oriented_children = s.frames.rotated_entries();
+        return c;
+    }
+    static std::size_t bytes(const Structures& s) {
+        return s.two_level.accel.memory_bytes() + s.frames.memory_bytes();
+    }
+
+    template <TraversalMode Mode, class Programs>
+    static TraceHit trace(const Structures& s, Programs& programs, const Ray& ray) {
+        programs.begin();
+        auto& sink = programs.sink();
+        const TwoLevel& accel = s.two_level.accel;
+        trace_two_level_with<Mode>(
+            accel, ray, sink, two_level_leaf<WorldRayLeaf>(s.two_level, programs),
+            [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) {
+                if (blas == 0) return traverse_obb<Mode>(accel.blases[0], s.frames, object_ray, tmax, sink, on_leaf);
+                return traverse<Mode, kBlasEvents>(accel.blases[blas], object_ray.origin,
+                                                   safe_inverse(object_ray.direction), object_ray.tmin,
+                                                   tmax, sink, on_leaf);
+            });
         return programs.template finish<Mode>(ray);
     }
 };

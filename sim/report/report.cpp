@@ -96,14 +96,19 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
     const MemoryBreakdown& mem = m.memory;
     j["memory_bytes"] = {{"tlas_nodes", mem.tlas_nodes},     {"blas_nodes", mem.blas_nodes},
                          {"instances", mem.instances},       {"custom_prims", mem.custom_prims},
-                         {"triangles", mem.triangles},       {"acceleration", mem.acceleration()},
+                         {"triangles", mem.triangles},       {"lss_prims", mem.lss_prims},
+                         {"oriented_children", mem.oriented_children},
+                         {"leaf_obbs", mem.leaf_obbs},       {"acceleration", mem.acceleration()},
                          {"common", mem.common},             {"total", mem.total()}};
     j["structures"] = {{"width", m.structures.width},
                        {"tlas_nodes", m.structures.tlas_nodes},
                        {"blas_nodes", m.structures.blas_nodes},
                        {"instances", m.structures.instances},
                        {"custom_prims", m.structures.custom_prims},
-                       {"triangles", m.structures.triangles}};
+                       {"triangles", m.structures.triangles},
+                       {"lss_prims", m.structures.lss_prims},
+                       {"oriented_children", m.structures.oriented_children},
+                       {"leaf_obbs", m.structures.leaf_obbs}};
     j["simulator"] = {{"build_seconds", m.build_seconds},
                       {"trace_seconds", m.frame.trace_seconds},
                       {"rays_per_second", m.frame.trace_seconds > 0
@@ -218,6 +223,43 @@ Table summary_table(const std::vector<RunResult>& runs) {
             row.push_back(std::isnan(o) ? "-" : format_sig(o, 3) + "%");
         }
         t.add_row(row);
+    }
+    return t;
+}
+
+// One row per run and method: its speedup over the baseline under every cost
+// preset ("n/a" where the preset's hardware lacks a feature the method needs
+// or the method cannot run), its IS calls per ray and memory overhead.
+Table speedup_table(const std::vector<RunResult>& runs) {
+    std::vector<std::string> header{"run", "method", "IS/ray", "mem overhead"};
+    if (!runs.empty())
+        for (const CostModel& c : runs.front().costs) header.push_back(c.name);
+    Table t(header);
+    for (const RunResult& r : runs) {
+        const std::string label = r.sweep_label.empty() ? r.config.name : r.sweep_label;
+        for (const MethodRun& m : r.methods) {
+            std::vector<std::string> row{label, m.method};
+            if (!m.runnable) {
+                row.push_back("n/a");
+                row.push_back("-");
+                for (std::size_t p = 0; p < r.costs.size(); ++p) row.push_back("n/a");
+                t.add_row(row);
+                continue;
+            }
+            const double rays = static_cast<double>(m.frame.rays_traced);
+            row.push_back(rays > 0 ? format_sig(static_cast<double>(m.frame.totals[Event::IsCall]) / rays, 4) : "-");
+            const double o = r.memory_overhead_percent(m.method);
+            row.push_back(m.method == r.config.baseline ? "0%" : std::isnan(o) ? "-" : format_sig(o, 3) + "%");
+            for (std::size_t p = 0; p < r.costs.size(); ++p) {
+                if (m.method == r.config.baseline) {
+                    row.push_back(m.priced[p].supported ? "1.00x" : "n/a");
+                    continue;
+                }
+                const double s = r.speedup(m.method, p);
+                row.push_back(s > 0 ? format_speedup(s) : "n/a");
+            }
+            t.add_row(row);
+        }
     }
     return t;
 }

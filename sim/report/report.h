@@ -19,9 +19,18 @@ namespace rtc {
 // Markdown file and the terminal table.
 [[nodiscard]] Table summary_table(const std::vector<RunResult>& runs);
 
+// Speedup of every method over the baseline under every cost preset, one row
+// per run and method (speedups.csv, speedups.md).
+[[nodiscard]] Table speedup_table(const std::vector<RunResult>& runs);
+
 // Render, per-method heat maps of cycles and IS calls per pixel on common
 // scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
 void write_images(const RunResult& run, const std::string& dir);
+
+// The config's break-even maps for this run (break_even_<name>.png in `dir`):
+// per cell of two swept costs, the cheapest method and its margin. Returns
+// the files written.
+std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
 
 // For each numeric sweep axis: speedup of every non-ref method against it, one
 // line per value of the other axes (e.g. speedup vs tilt, one line per N).

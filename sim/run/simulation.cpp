@@ -85,6 +85,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
     r.load_seconds = seconds_since(t_load);
+    check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
@@ -99,6 +100,12 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         const MethodEntry& method = *find_method(name);  // names were checked when parsing
         MethodRun m;
         m.method = name;
+        m.reason = not_applicable_reason(method, geometry);
+        if (!m.reason.empty()) {
+            m.runnable = false;
+            r.methods.push_back(std::move(m));
+            continue;
+        }
         m.instances = method.instance_count(geometry);
         if (m.instances > r.memory.instance_limit) {
             m.runnable = false;

@@ -9,6 +9,7 @@
 #include "sim/execution/frame.h"
 #include "sim/hardware/memory_model.h"
 #include "sim/config/run_config.h"
+#include "sim/run/work_estimate.h"
 
 #include <optional>
 #include <string>
@@ -60,6 +61,7 @@ struct RunContext {
     bool record_warps = false;  // keep every wave (calibration re-prices them)
     bool keep_rays = false;     // keep the recorded rays and hits in the result (the Python module's arrays)
     std::string out_dir;  // rays/hits files are streamed here when requested
+    WorkLimits limits;    // checked again once the scene is loaded
 };
 
 [[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,

@@ -1,8 +1,18 @@
 #include "sim/util/json_reader.h"
 
+#include <cfloat>
 #include <cmath>
 
 namespace rtc {
+
+namespace {
+// Why `x` cannot be stored as a float, or "" when it can.
+std::string float_problem(double x) {
+    if (std::abs(x) > FLT_MAX) return " is too large for a float (it would become infinite)";
+    if (x != 0.0 && std::abs(x) < FLT_MIN) return " is too small for a float (it would become 0)";
+    return "";
+}
+}  // namespace
 
 std::string describe(const nlohmann::json& v) {
     std::string s = v.dump();
@@ -52,6 +62,7 @@ double JsonReader::number(std::string_view key, std::optional<double> fallback, 
     if (!std::isfinite(x) || x < min || x > max)
         fail(key, "expected a number in [" + describe(min) + ", " + describe(max) + "], got " +
                       describe(*v));
+    if (const std::string p = float_problem(x); !p.empty()) fail(key, describe(*v) + p);
     return x;
 }
 
@@ -63,7 +74,22 @@ double JsonReader::positive(std::string_view key, std::optional<double> fallback
     }
     if (!v->is_number() || !(v->get<double>() > 0.0) || !std::isfinite(v->get<double>()))
         fail(key, "expected a positive number, got " + describe(*v));
+    if (const std::string p = float_problem(v->get<double>()); !p.empty()) fail(key, describe(*v) + p);
     return v->get<double>();
+}
+
+float JsonReader::length(std::string_view key, std::optional<double> fallback, bool allow_zero) const {
+    const nlohmann::json* v = find(key);
+    if (!v) {
+        if (!fallback) fail(key, "missing (expected a length)");
+        return static_cast<float>(*fallback);
+    }
+    const double x = v->is_number() ? v->get<double>() : -1.0;
+    const bool ok = std::isfinite(x) && ((allow_zero && x == 0.0) || (x >= kMinLength && x <= kMaxLength));
+    if (!ok)
+        fail(key, std::string(allow_zero ? "expected 0 or a positive number" : "expected a positive number") +
+                      " in [1e-18, 1e18] (a length), got " + describe(*v));
+    return static_cast<float>(x);
 }
 
 long long JsonReader::integer(std::string_view key, std::optional<long long> fallback,
@@ -133,6 +159,8 @@ std::array<double, 3> JsonReader::vec3(std::string_view key,
         if (!e.is_number() || !std::isfinite(e.get<double>()))
             fail(key, "expected [x, y, z] of finite numbers, got " + describe(*v));
         out[i] = e.get<double>();
+        if (const std::string p = float_problem(out[i]); !p.empty())
+            fail(key, "component " + describe(e) + p);
     }
     return out;
 }

@@ -44,9 +44,18 @@ public:
     void require_object() const;
 
     [[nodiscard]] JsonReader child(std::string_view key) const;  // must be an object
+    // Numbers are stored as float downstream, so number(), positive() and
+    // vec3() also reject values that would overflow a float or underflow to
+    // 0 (1e39, 1e-300), naming the key.
     [[nodiscard]] double number(std::string_view key, std::optional<double> fallback,
                                 double min = -1e300, double max = 1e300) const;
     [[nodiscard]] double positive(std::string_view key, std::optional<double> fallback) const;
+    // A scene length (radius, length, spread...): in [kMinLength, kMaxLength],
+    // or 0 when `allow_zero`, so boxes, squared distances and camera framing
+    // stay finite and non-zero in float.
+    static constexpr double kMinLength = 1e-18, kMaxLength = 1e18;
+    [[nodiscard]] float length(std::string_view key, std::optional<double> fallback,
+                               bool allow_zero = false) const;
     [[nodiscard]] long long integer(std::string_view key, std::optional<long long> fallback,
                                     long long min, long long max) const;
     [[nodiscard]] bool boolean(std::string_view key, std::optional<bool> fallback) const;

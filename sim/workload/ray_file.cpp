@@ -4,6 +4,7 @@
 #include "sim/workload/ray_file.h"
 
 #include "core/input_error.h"
+#include "scenes/file_bytes.h"
 
 #include <bit>
 #include <cerrno>
@@ -46,6 +47,7 @@ bool finite(const Vec3& v) {
 // a whole number of `record` byte records.
 std::uint64_t open_records(std::ifstream& in, const std::string& path, std::size_t record,
                            const char* what) {
+    require_regular_file(path);  // a directory "opens" with a size of 2^63-1
     errno = 0;
     in.open(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open " + what + system_reason());

@@ -34,7 +34,7 @@ TEST_CASE("parallel_for: every index exactly once, for any thread count") {
     }
 }
 
-TEST_CASE("parallel_for: threads = 1 runs inline; more threads than items is fine") {
+TEST_CASE("parallel_for: threads = 1 runs inline, more threads than items is fine") {
     const auto caller = std::this_thread::get_id();
     bool all_inline = true;
     parallel_for(100, 1, [&](std::size_t, unsigned thread) {

@@ -118,7 +118,7 @@ TEST_CASE("output text: ink lands inside the measured box, nowhere else") {
     CHECK(inside > 10);
 }
 
-TEST_CASE("output text: 2x scale quadruples the ink; right alignment ends at x") {
+TEST_CASE("output text: 2x scale quadruples the ink, right alignment ends at x") {
     const rtc::Rgb white{255, 255, 255};
     rtc::Image one(200, 60, white), two(200, 60, white);
     rtc::draw_text(one, 0, 0, "Heat 42", {{0, 0, 0}, 1});

@@ -71,7 +71,7 @@ TEST_CASE("output plot: line plot is balanced, names every series, escapes text,
     CHECK(tags_balanced("<svg><g></svg></g>") == false);  // the checker itself can fail
 }
 
-TEST_CASE("output plot: NaN breaks a line; log y skips non-positive values") {
+TEST_CASE("output plot: NaN breaks a line, log y skips non-positive values") {
     rtc::LinePlot p;
     p.series.push_back({"s", {1, 2, 3, 4, 5}, {1.0, 2.0, std::nan(""), 4.0, 5.0}});
     CHECK(count(rtc::line_plot_svg(p), "<polyline") == 2);

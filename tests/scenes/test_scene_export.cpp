@@ -6,6 +6,8 @@
 #include "scenes/loaders.h"
 #include "scenes/stats.h"
 
+#include "shared_data.h"
+
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -46,7 +48,8 @@ TEST_CASE("scene export: text and HAIR round trips are exact") {
 }
 
 TEST_CASE("scene export: the real Sintel hair survives a text round trip") {
-    const fs::path data = fs::path(RTCSIM_SHARED_DIR) / "data/hair/sintel_hair_16pts.tfx";
+    const fs::path data = test::shared_data() / "hair/sintel_hair_16pts.tfx";
+    if (!test::shared_present({data})) return;
     const Strands s = load_tfx(data).strands;
     write_txt(s, scratch("sintel.txt"));
     check_same(s, load_txt(scratch("sintel.txt")).strands);

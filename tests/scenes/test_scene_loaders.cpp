@@ -1,6 +1,7 @@
 // The loaders against the real models in ../shared/data (counts from the data
 // README and the .SOURCE.txt files) and against tiny hand-made fixtures.
 #include "scenes/loaders.h"
+#include "shared_data.h"
 
 #include <doctest/doctest.h>
 
@@ -10,7 +11,7 @@
 using namespace rtc;
 
 namespace {
-const std::filesystem::path kData = std::filesystem::path(RTCSIM_SHARED_DIR) / "data";
+const std::filesystem::path kData = test::shared_data();
 const std::filesystem::path kFixtures = std::filesystem::path(RTCSIM_SOURCE_DIR) / "tests/fixtures";
 
 bool all_radii(const Strands& s, float r) {
@@ -21,6 +22,7 @@ bool all_radii(const Strands& s, float r) {
 }  // namespace
 
 TEST_CASE("scene loaders: Sintel hair (TressFX 4) and head (OBJ)") {
+    if (!test::shared_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj"})) return;
     const LoadedCurves hair = load_curves(kData / "hair/sintel_hair_16pts.tfx");
     CHECK(hair.strands.strand_count() == 11400);
     CHECK(hair.strands.segment_count() == 171000);
@@ -37,12 +39,14 @@ TEST_CASE("scene loaders: Sintel hair (TressFX 4) and head (OBJ)") {
 }
 
 TEST_CASE("scene loaders: TressFX 3 bear guides") {
+    if (!test::shared_present({kData / "hair/tressfx_bear.tfx"})) return;
     const LoadedCurves bear = load_curves(kData / "hair/tressfx_bear.tfx", CurveFormat::Tfx);
     CHECK(bear.strands.strand_count() == 48113);
     CHECK(bear.strands.segment_count() == 144339);
 }
 
 TEST_CASE("scene loaders: HAIR fur with per-point thickness") {
+    if (!test::shared_present({kData / "hair/fur_synthetic.hair"})) return;
     const LoadedCurves fur = load_curves(kData / "hair/fur_synthetic.hair");
     CHECK(fur.strands.strand_count() == 50000);
     CHECK(fur.strands.segment_count() == 150000);
@@ -54,6 +58,7 @@ TEST_CASE("scene loaders: HAIR fur with per-point thickness") {
 }
 
 TEST_CASE("scene loaders: TrackVis stroke streamlines") {
+    if (!test::shared_present({kData / "streamlines/stroke.trk"})) return;
     const LoadedCurves trk = load_curves(kData / "streamlines/stroke.trk");
     CHECK(trk.strands.strand_count() == 36763);
     CHECK(trk.strands.segment_count() == 200705);
@@ -61,6 +66,7 @@ TEST_CASE("scene loaders: TrackVis stroke streamlines") {
 }
 
 TEST_CASE("scene loaders: SWC neurons, one segment per parent-child pair") {
+    if (!test::shared_present({kData / "neurons/hemibrain_DA1_lPN"})) return;
     std::size_t total = 0;
     const std::pair<const char*, std::size_t> expected[] = {{"1734350788", 4464}, {"1734350908", 4846},
                                                             {"722817260", 4331}, {"754534424", 4695},

@@ -1,0 +1,80 @@
+#include "sim/plot/break_even.h"
+
+#include "sim/plot/text_raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace rtc {
+
+namespace {
+
+// Okabe & Ito's colour-blind-safe categorical palette (2008), then greys.
+constexpr Rgb kPalette[] = {{0, 114, 178},  {230, 159, 0},  {0, 158, 115}, {204, 121, 167},
+                            {86, 180, 233}, {213, 94, 0},   {240, 228, 66}, {0, 0, 0}};
+
+Rgb blend(Rgb c, double t) {  // t = 0: white, 1: c
+    const auto mix = [t](std::uint8_t v) { return static_cast<std::uint8_t>(std::lround(255.0 + (v - 255.0) * t)); };
+    return {mix(c.r), mix(c.g), mix(c.b)};
+}
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+}  // namespace
+
+Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
+    if (g.nx <= 0 || g.ny <= 0 || g.winner.size() != static_cast<std::size_t>(g.nx * g.ny) ||
+        g.margin.size() != g.winner.size())
+        throw std::invalid_argument("render_break_even: grid size mismatch");
+    const int cp = std::max(1, o.cell_pixels), map_w = g.nx * cp, map_h = g.ny * cp;
+    const int left = 70, top = 40, legend_w = 190, bottom = 70;
+    Image img(left + map_w + 20 + legend_w, top + map_h + bottom, {255, 255, 255});
+    draw_text(img, 10, 8, g.title, {{0, 0, 0}, 2});
+    const double full = std::log(std::max(o.full_margin, 1.0001));
+    for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * g.nx + x);
+            const int w = g.winner[i];
+            Rgb c{128, 128, 128};
+            if (w >= 0) {
+                const double m = std::isfinite(g.margin[i]) ? std::log(std::max(g.margin[i], 1.0)) / full : 1.0;
+                c = blend(kPalette[static_cast<std::size_t>(w) % std::size(kPalette)], 0.25 + 0.75 * std::clamp(m, 0.0, 1.0));
+            }
+            img.fill_rect(left + x * cp, top + (g.ny - 1 - y) * cp, cp, cp, c);
+        }
+    img.stroke_rect(left - 1, top - 1, map_w + 2, map_h + 2, {0, 0, 0});
+    // Axis ticks at the edges and the middle (log axes: geometric middle).
+    const TextStyle small{{0, 0, 0}, 1, TextAlign::Center};
+    for (int k = 0; k <= 2; ++k) {
+        const double xv = g.x_lo * std::pow(g.x_hi / g.x_lo, k / 2.0), yv = g.y_lo * std::pow(g.y_hi / g.y_lo, k / 2.0);
+        draw_text(img, left + map_w * k / 2, top + map_h + 6, number(xv), small);
+        draw_text(img, left - 6, top + map_h - map_h * k / 2 - 4, number(yv), {{0, 0, 0}, 1, TextAlign::Right});
+    }
+    draw_text(img, left + map_w / 2, top + map_h + 22, g.x_label + " (log)", small);
+    draw_text(img, 6, top - 14, g.y_label + " (log)", {{0, 0, 0}, 1, TextAlign::Left});
+    draw_text(img, 10, top + map_h + 40, g.caption, {{60, 60, 60}, 1, TextAlign::Left});
+    // Legend: method colours at full and at a 1.1x margin.
+    const int lx = left + map_w + 20;
+    draw_text(img, lx, top, "winner (full colour:", {});
+    draw_text(img, lx, top + 12, " wins by >= " + number(o.full_margin) + "x;", {});
+    draw_text(img, lx, top + 24, " pale: a close call)", {});
+    for (std::size_t m = 0; m < g.methods.size(); ++m) {
+        const int ly = top + 44 + static_cast<int>(m) * 18;
+        const Rgb c = kPalette[m % std::size(kPalette)];
+        img.fill_rect(lx, ly, 14, 12, c);
+        img.fill_rect(lx + 16, ly, 14, 12, blend(c, 0.25 + 0.75 * std::log(1.1) / full));
+        draw_text(img, lx + 36, ly + 2, g.methods[m], {});
+    }
+    const int ly = top + 44 + static_cast<int>(g.methods.size()) * 18;
+    img.fill_rect(lx, ly, 14, 12, {128, 128, 128});
+    draw_text(img, lx + 36, ly + 2, "none runs", {});
+    return img;
+}
+
+}  // namespace rtc

@@ -1,0 +1,30 @@
+// Break-even maps: over a grid of two swept costs, which method is cheapest
+// in each cell and by how much. A cell's hue names the winner (legend), its
+// strength the margin (runner-up cycles / winner cycles: pale at 1x, full at
+// `full_margin` and above); cells where no method could run are grey.
+#pragma once
+
+#include "sim/plot/image.h"
+
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+struct BreakEvenGrid {
+    int nx = 0, ny = 0;                 // cells along x (left to right) and y (bottom to top)
+    std::vector<int> winner;            // nx * ny, row 0 = bottom; -1 = none
+    std::vector<double> margin;         // runner-up / winner (>= 1; inf when alone)
+    std::vector<std::string> methods;   // winner index -> name
+    double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;  // axis values at the grid's edges (log axes)
+    std::string x_label, y_label, title, caption;
+};
+
+struct BreakEvenOptions {
+    int cell_pixels = 6;
+    double full_margin = 2.0;
+};
+
+[[nodiscard]] Image render_break_even(const BreakEvenGrid& grid, const BreakEvenOptions& options = {});
+
+}  // namespace rtc

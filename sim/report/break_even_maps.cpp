@@ -1,0 +1,77 @@
+// Break-even maps of a run: re-price its recorded event counts on a grid of
+// two swept costs (no tracing again: pricing is linear in the costs) and draw
+// which method wins where (sim/plot/break_even.h).
+#include "sim/plot/break_even.h"
+#include "sim/report/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+namespace rtc {
+
+namespace {
+
+std::string axis_label(const BreakEvenAxis& a) {
+    std::string s;
+    for (const Event e : a.events) s += (s.empty() ? "" : " = ") + std::string(event_name(e));
+    return s + " [cycles]";
+}
+
+double axis_value(const BreakEvenAxis& a, int i, int n) {
+    return a.min * std::pow(a.max / a.min, (i + 0.5) / n);  // cell centres on a log axis
+}
+
+}  // namespace
+
+std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir) {
+    std::vector<std::string> written;
+    for (const BreakEvenSpec& spec : run.config.break_even) {
+        const CostModel* base = nullptr;
+        for (const CostModel& c : run.costs)
+            if (c.name == spec.preset) base = &c;
+        if (!base)
+            throw InputError(run.config.file + ": /break_even: preset \"" + spec.preset +
+                             "\" is not one of the run's cost presets");
+        BreakEvenGrid g;
+        g.nx = g.ny = spec.cells;
+        g.x_lo = spec.x.min, g.x_hi = spec.x.max, g.y_lo = spec.y.min, g.y_hi = spec.y.max;
+        g.x_label = axis_label(spec.x);
+        g.y_label = axis_label(spec.y);
+        const std::string label = run.sweep_label.empty() ? run.config.name : run.sweep_label;
+        g.title = "fastest method: " + spec.name;
+        g.caption = label + "\nother costs: " + base->name + "; a method the preset cannot run is left out";
+        // Every method of the run keeps its colour in every map; those that
+        // cannot run here are listed as n/a and never win.
+        std::vector<const MethodRun*> methods;
+        for (const MethodRun& m : run.methods) {
+            const MethodEntry* e = find_method(m.method);
+            const bool runs = m.runnable && e && base->missing_feature(e->info.needs).empty();
+            methods.push_back(runs ? &m : nullptr);
+            g.methods.push_back(runs ? m.method : m.method + " (n/a)");
+        }
+        CostModel model = *base;
+        for (int iy = 0; iy < g.ny; ++iy) {
+            for (const Event e : spec.y.events) model[e] = axis_value(spec.y, iy, g.ny);
+            for (int ix = 0; ix < g.nx; ++ix) {
+                for (const Event e : spec.x.events) model[e] = axis_value(spec.x, ix, g.nx);
+                double best = std::numeric_limits<double>::infinity(), second = best;
+                int winner = -1;
+                for (std::size_t k = 0; k < methods.size(); ++k) {
+                    if (!methods[k]) continue;
+                    const double c = price(methods[k]->frame.totals, model).total_cycles;
+                    if (c < best) second = best, best = c, winner = static_cast<int>(k);
+                    else if (c < second) second = c;
+                }
+                g.winner.push_back(winner);
+                g.margin.push_back(winner >= 0 && best > 0 ? second / best : 1.0);
+            }
+        }
+        const std::string path = (std::filesystem::path(dir) / ("break_even_" + spec.name + ".png")).string();
+        write_png(render_break_even(g), path);
+        written.push_back(path);
+    }
+    return written;
+}
+
+}  // namespace rtc

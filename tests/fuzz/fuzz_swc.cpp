@@ -1,0 +1,12 @@
+// libFuzzer harness: the swc curve loader on arbitrary bytes.
+#include "fuzz_common.h"
+#include "scenes/loaders.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string path = rtc::fuzz::write_scratch(data, size, ".swc");
+    try {
+        (void)rtc::load_swc(path);
+    } catch (const rtc::InputError&) {
+    }
+    return 0;
+}

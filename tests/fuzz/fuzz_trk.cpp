@@ -1,0 +1,12 @@
+// libFuzzer harness: the trk curve loader on arbitrary bytes.
+#include "fuzz_common.h"
+#include "scenes/loaders.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string path = rtc::fuzz::write_scratch(data, size, ".trk");
+    try {
+        (void)rtc::load_trk(path);
+    } catch (const rtc::InputError&) {
+    }
+    return 0;
+}

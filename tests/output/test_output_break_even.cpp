@@ -1,0 +1,44 @@
+// Break-even maps: the renderer colours each cell by its winner (strength by
+// margin, grey where none runs) and the config block is checked with paths.
+#include "core/input_error.h"
+#include "sim/config/run_config.h"
+#include "sim/plot/break_even.h"
+
+#include <doctest/doctest.h>
+
+using namespace rtc;
+
+TEST_CASE("break-even map: winners, margins and empty cells are drawn") {
+    BreakEvenGrid g;
+    g.nx = 2, g.ny = 1;
+    g.winner = {0, -1};
+    g.margin = {4.0, 1.0};
+    g.methods = {"ref"};
+    g.x_lo = 1, g.x_hi = 100, g.y_lo = 1, g.y_hi = 10;
+    BreakEvenOptions o;
+    o.cell_pixels = 10;
+    const Image img = render_break_even(g, o);
+    CHECK(img.width > 20);
+    // Map origin at (70, 40): cell 0 full colour (margin >= 2x), cell 1 grey.
+    CHECK(img.get(75, 45) == Rgb{0, 114, 178});
+    CHECK(img.get(85, 45) == Rgb{128, 128, 128});
+    g.winner.pop_back();
+    CHECK_THROWS_AS((void)render_break_even(g, o), std::invalid_argument);
+}
+
+TEST_CASE("break-even map: the config block names unknown events and bad ranges by path") {
+    nlohmann::json c = {{"scene", {{"type", "bundle"}}},
+                        {"break_even", {{{"name", "m"}, {"preset", "p"},
+                                         {"x", {{"events", {"context_switch"}}, {"min", 1}, {"max", 10}}},
+                                         {"y", {{"events", {"context_swich"}}, {"min", 1}, {"max", 10}}}}}}};
+    CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"),
+                         doctest::Contains("x.json: /break_even/0/y/events/0: unknown event"), InputError);
+    c["break_even"][0]["y"]["events"] = {"obb_box_test"};
+    c["break_even"][0]["y"]["max"] = 0.5;
+    CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"), doctest::Contains("/break_even/0/y/max"), InputError);
+    c["break_even"][0]["y"]["max"] = 5;
+    const RunConfig r = parse_run_config(c, "x.json");
+    REQUIRE(r.break_even.size() == 1);
+    CHECK(r.break_even[0].y.events == std::vector<Event>{Event::ObbBoxTest});
+    CHECK(r.break_even[0].cells == 48);
+}
