@@ -5,6 +5,8 @@ import json
 import threading
 import time
 
+import pytest
+
 import rtcsim
 from conftest import TINY
 
@@ -78,7 +80,7 @@ def test_tracing_releases_the_gil():
             ticks.append(time.perf_counter())
             time.sleep(0.001)
 
-    sets = {"workload.width": 160, "workload.height": 160, "output.images": False}
+    sets = {"workload.width": 320, "workload.height": 320, "output": {"images": False}}
     ticker = threading.Thread(target=tick)
     ticker.start()
     try:
@@ -90,8 +92,9 @@ def test_tracing_releases_the_gil():
         ticker.join()
     during = [t for t in ticks if start < t < end]
     trace = sum(m.trace_seconds for m in result.methods.values())
-    assert trace > 0.02, "the run is too short to tell"
-    assert len(during) >= 5, f"{len(during)} ticks in {end - start:.3f} s of tracing"
+    if trace < 0.05:
+        pytest.skip(f"tracing took {trace:.3f} s: too short to tell")
+    assert len(during) >= 10, f"{len(during)} ticks in {end - start:.3f} s of tracing"
 
 
 def test_simulate_entry_point(tmp_path):
