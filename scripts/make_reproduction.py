@@ -1,57 +1,45 @@
 #!/usr/bin/env python3
-"""Collects the report.json files of the reproduction runs into the tables of
-docs/reproduction.md and a scatter plot of speedup against the AABB/OBB
-surface-area ratio over all runs (docs/images/speedup_vs_area_ratio.svg).
+"""Regenerates docs/reproduction.md's tables and figures from the
+reproduction runs, with the rtcsim Python module.
 
-usage: scripts/make_reproduction.py RUNS_DIR > tables.md
+usage: scripts/make_reproduction.py RUNS_DIR [--images DIR] [--trace [SIZE]] > tables.md
+
 RUNS_DIR holds fig3/, hair/, scivis/, memory/ as written by
   build/simulate configs/runs/<name>.json --out RUNS_DIR/<name>
-Only the Python standard library is used.
+(or rtcsim.simulate). Prints the Markdown tables (synthetic table against the
+paper, hair and sci-vis predictions, memory) and writes into docs/images/:
+  speedup_vs_area_ratio.svg   speedup against the AABB/OBB area ratio, all runs
+  fig3_speedup_vs_tilt.svg    the synthetic table's speedups against the tilt, with the paper's
+With --trace, also re-traces the N = 1000, r = 0.002, 45 degree bundle at
+SIZE x SIZE (default 800, as the calibration runs) for its heat maps:
+  fig3_n1000_r0.002_45deg_cycles_{ref,obb}.png (common scale), ..._ratio.png
 """
-import glob
+import argparse
 import json
-import math
 import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples"))
+from rtcsim_import import ROOT, import_rtcsim  # noqa: E402
+
+rtcsim = import_rtcsim()
+from rtcsim import plot  # noqa: E402
 
 PAPER = {0: [1.05, 1.03, 1.04, 1.04], 15: [1.16, 1.16, 2.01, 3.83],
          30: [1.10, 1.21, 1.91, 3.32], 45: [1.12, 1.22, 1.90, 3.20]}
 CONFIGS = [(1, 0.1), (10, 0.01), (100, 0.002), (1000, 0.002)]
-
-
-def reports(directory):
-    out = []
-    for path in sorted(glob.glob(os.path.join(directory, "*", "report.json")),
-                       key=lambda p: int(os.path.basename(os.path.dirname(p)).split("_")[0])):
-        with open(path) as f:
-            out.append((path, json.load(f)))
-    return out
-
-
-def speedup(r, preset):
-    s = (r["speedup_over_ref"] or {}).get("obb", {}).get(preset)
-    return s
-
-
-def is_per_ray(r, method):
-    m = r["methods"].get(method, {})
-    if not m.get("runnable"):
-        return None
-    return m["events"]["is_call"]["per_ray"]
+PRESET = "turing-calibrated"
 
 
 def fig3_table(runs, preset):
-    cells = {}
-    for _, r in runs:
-        sp = r["sweep_point"]
-        cells[(sp["scene.count"], sp["scene.tilt_deg"])] = (speedup(r, preset), r)
+    cells = {(r.sweep_point["scene.count"], r.sweep_point["scene.tilt_deg"]): r for r in runs}
     lines = ["| tilt | " + " | ".join(f"N={n}, r={rad}" for n, rad in CONFIGS) + " |",
              "|---|" + "---|" * len(CONFIGS)]
     errors = []
     for tilt, row in PAPER.items():
         cols = []
         for (n, _), paper in zip(CONFIGS, row):
-            s = cells[(n, tilt)][0]
+            s = cells[(n, tilt)].speedup("obb", preset)
             err = 100.0 * (s - paper) / paper
             errors.append(abs(err))
             mark = "" if abs(err) <= 10 else " **"
@@ -61,29 +49,32 @@ def fig3_table(runs, preset):
     lines.append("")
     lines.append(f"Paper / simulated (error). {within} of {len(errors)} cells within +/-10%; "
                  f"mean |error| {sum(errors) / len(errors):.1f}%; ** marks a miss.")
-    return "\n".join(lines), cells
+    return "\n".join(lines)
+
+
+def model_name(r):
+    return r.sweep_point.get("scene.name", r.name)
 
 
 def model_table(runs, preset):
-    lines = ["| model | kind | prims | speedup | AABB/OBB area | IS calls ref -> obb (per ray) | IS-call reduction | obb memory overhead |",
+    lines = ["| model | kind | prims | speedup | AABB/OBB area | IS calls ref -> obb (per ray) "
+             "| IS-call reduction | obb memory overhead |",
              "|---|---|---:|---:|---:|---:|---:|---:|"]
     points = []
-    for _, r in runs:
-        sp = r.get("sweep_point", {})
-        kind = r["scene"]["primitive_kind"]
+    for r in runs:
+        kind = r.kind
         if kind == "phantom":
-            kind += f" /{sp.get('primitives.subdivision', 1)}"
-        s = speedup(r, preset)
-        a = r["scene"]["surface_area"]["aabb_over_obb_paper"]
-        ri, oi = is_per_ray(r, "ref"), is_per_ray(r, "obb")
-        red = f"{ri / oi:.1f}x" if ri and oi else "n/a"
-        mem = (r["memory_overhead_percent"] or {}).get("obb")
-        name = sp.get("scene.name", r["name"])
-        lines.append(f"| {name} | {kind} | {r['scene']['primitives']:,} | "
-                     f"{(f'{s:.2f}x' if s else 'n/a')} | {a:.2f} | "
-                     f"{ri:.2f} -> {oi:.2f} | {red} | {(f'{mem:.0f}%' if mem is not None else 'n/a')} |"
-                     if ri is not None and oi is not None else
-                     f"| {name} | {kind} | {r['scene']['primitives']:,} | n/a | {a:.2f} | n/a | n/a | n/a |")
+            kind += f" /{r.sweep_point.get('primitives.subdivision', 1)}"
+        s, a = r.speedup("obb", preset), r.area_ratio()
+        ri, oi = r.is_per_ray("ref"), r.is_per_ray("obb")
+        name = model_name(r)
+        if ri is None or oi is None:
+            lines.append(f"| {name} | {kind} | {r.primitives:,} | n/a | {a:.2f} | n/a | n/a | n/a |")
+        else:
+            red = f"{ri / oi:.1f}x" if ri and oi else "n/a"
+            mem = r.memory_overhead("obb")
+            lines.append(f"| {name} | {kind} | {r.primitives:,} | {(f'{s:.2f}x' if s else 'n/a')} | {a:.2f} | "
+                         f"{ri:.2f} -> {oi:.2f} | {red} | {(f'{mem:.0f}%' if mem is not None else 'n/a')} |")
         if s:
             points.append((a, s, name))
     return "\n".join(lines), points
@@ -92,80 +83,77 @@ def model_table(runs, preset):
 def memory_table(runs):
     lines = ["| model | prims | memory preset | ref total | obb total | overhead |",
              "|---|---:|---|---:|---:|---:|"]
-    for _, r in runs:
-        sp = r.get("sweep_point", {})
-        ref, obb = r["methods"]["ref"], r["methods"]["obb"]
-        def mib(m):
-            return f"{m['memory_bytes']['total'] / 2**20:,.1f} MiB" if m.get("runnable") else "n/a"
-        over = (r["memory_overhead_percent"] or {}).get("obb")
-        reason = "" if obb.get("runnable") else f" ({obb.get('reason')})"
-        lines.append(f"| {sp.get('scene.name', r['name'])} | {r['scene']['primitives']:,} | {r['memory_preset']} | "
-                     f"{mib(ref)} | {mib(obb)}{reason} | {(f'{over:.0f}%' if over is not None else 'n/a')} |")
+    for r in runs:
+        def mib(method):
+            total = r.memory_total(method)
+            return f"{total / 2**20:,.1f} MiB" if total is not None else "n/a"
+        over = r.memory_overhead("obb")
+        reason = "" if r.runnable("obb") else f" ({r.data['methods']['obb'].get('reason')})"
+        lines.append(f"| {model_name(r)} | {r.primitives:,} | {r.data['memory_preset']} | "
+                     f"{mib('ref')} | {mib('obb')}{reason} | {(f'{over:.0f}%' if over is not None else 'n/a')} |")
     return "\n".join(lines)
 
 
-def scatter_svg(groups, path):
-    """groups: {label: [(x, y, name)]}, log-log axes."""
-    w, h, left, right, top, bottom = 640, 440, 70, 170, 40, 60
-    xs = [p[0] for g in groups.values() for p in g]
-    ys = [p[1] for g in groups.values() for p in g]
-    lx0, lx1 = math.log10(min(xs) * 0.8), math.log10(max(xs) * 1.25)
-    ly0, ly1 = math.log10(min(ys) * 0.9), math.log10(max(ys) * 1.1)
-    def px(x):
-        return left + (math.log10(x) - lx0) / (lx1 - lx0) * (w - left - right)
-    def py(y):
-        return h - bottom - (math.log10(y) - ly0) / (ly1 - ly0) * (h - top - bottom)
-    colors = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"]
-    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" font-size="12">',
-           f'<rect width="{w}" height="{h}" fill="white"/>',
-           f'<text x="{w / 2 - 60}" y="22" font-size="15" text-anchor="middle">speedup vs AABB/OBB surface-area ratio (all runs)</text>']
-    for e in range(math.floor(lx0), math.ceil(lx1) + 1):
-        for m in (1, 2, 5):
-            v = m * 10 ** e
-            if lx0 <= math.log10(v) <= lx1:
-                out.append(f'<line x1="{px(v):.1f}" y1="{top}" x2="{px(v):.1f}" y2="{h - bottom}" stroke="#eee"/>')
-                out.append(f'<text x="{px(v):.1f}" y="{h - bottom + 16}" text-anchor="middle">{v:g}</text>')
-    for v in (0.5, 0.75, 1, 1.5, 2, 3, 4, 5, 6, 8, 10):
-        if ly0 <= math.log10(v) <= ly1:
-            out.append(f'<line x1="{left}" y1="{py(v):.1f}" x2="{w - right}" y2="{py(v):.1f}" stroke="#eee"/>')
-            out.append(f'<text x="{left - 6}" y="{py(v) + 4:.1f}" text-anchor="end">{v:g}x</text>')
-    out.append(f'<rect x="{left}" y="{top}" width="{w - left - right}" height="{h - top - bottom}" fill="none" stroke="#333"/>')
-    out.append(f'<text x="{(left + w - right) / 2}" y="{h - 20}" text-anchor="middle">sum of AABB areas / sum of OBB areas (paper OBBs), log</text>')
-    out.append(f'<text transform="translate(18,{(top + h - bottom) / 2}) rotate(-90)" text-anchor="middle">speedup of obb over ref, log</text>')
-    for i, (label, pts) in enumerate(groups.items()):
-        c = colors[i % len(colors)]
-        for x, y, _ in pts:
-            out.append(f'<circle cx="{px(x):.1f}" cy="{py(y):.1f}" r="4" fill="{c}" fill-opacity="0.8"/>')
-        ly = top + 10 + 20 * i
-        out.append(f'<circle cx="{w - right + 16}" cy="{ly}" r="4" fill="{c}"/>')
-        out.append(f'<text x="{w - right + 26}" y="{ly + 4}">{label}</text>')
-    out.append("</svg>")
-    with open(path, "w") as f:
-        f.write("\n".join(out) + "\n")
+def tilt_figure(runs, preset):
+    fig = plot.speedup_vs_axis(runs, "scene.tilt_deg", preset, "obb",
+                               title=f"synthetic bundles: speedup vs tilt ({preset}); dashed: the paper")
+    ax = fig.axes[0]
+    lines = {line.get_label(): line for line in ax.get_lines() if line.get_marker() == "o"}
+    for i, (n, rad) in enumerate(CONFIGS):
+        line = next((v for k, v in lines.items() if f"scene.count={n}," in k + ","), None)
+        ax.plot(list(PAPER), [PAPER[t][i] for t in PAPER], ls="--", marker="x",
+                color=line.get_color() if line else None, label=f"paper N={n}, r={rad}")
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def trace_heatmaps(size, images):
+    with open(os.path.join(ROOT, "configs", "runs", "fig3_bundles.json")) as f:
+        config = json.load(f)
+    config.pop("sweep")
+    config.pop("calibrate", None)
+    config["scene"].update(count=1000, radius=0.002, tilt_deg=45)
+    config["workload"].update(width=size, height=size)
+    config["output"] = {"images": False}
+    result = rtcsim.run(config, base=os.path.join(ROOT, "configs", "runs", "fig3_bundles.json"))
+    stem = os.path.join(images, "fig3_n1000_r0.002_45deg")
+    for method in ("ref", "obb"):
+        fig = plot.heatmaps(result, "cycles", [method], PRESET, scale_methods=["ref", "obb"],
+                            title=f"{method}: cycles per pixel ({PRESET})\nN=1000, r=0.002, 45 deg, common scale")
+        fig.savefig(f"{stem}_cycles_{method}.png", dpi=100)
+    plot.ratio_map(result, "obb", PRESET).savefig(f"{stem}_ratio.png", dpi=100)
 
 
 def main():
-    runs_dir = sys.argv[1]
-    preset = "turing-calibrated"
-    fig3 = reports(os.path.join(runs_dir, "fig3"))
-    table, cells = fig3_table(fig3, preset)
+    parser = argparse.ArgumentParser(description="docs/reproduction.md's tables (stdout) and figures")
+    parser.add_argument("runs_dir")
+    parser.add_argument("--images", default=os.path.join(ROOT, "docs", "images"))
+    parser.add_argument("--trace", type=int, nargs="?", const=800, default=None, metavar="SIZE",
+                        help="re-trace the N=1000, 45 degree bundle for its heat maps (default 800 x 800)")
+    args = parser.parse_args()
+
+    fig3 = rtcsim.load_reports(os.path.join(args.runs_dir, "fig3"))
     print("## Synthetic table (calibrated preset)\n")
-    print(table)
-    groups = {"synthetic bundles": [(r["scene"]["surface_area"]["aabb_over_obb_paper"], s, "")
-                                    for s, r in cells.values() if s]}
+    print(fig3_table(fig3, PRESET))
+    groups = {"synthetic bundles": [(r.area_ratio(), s, "") for r in fig3 if (s := r.speedup("obb", PRESET))]}
     for name in ("hair", "scivis"):
-        runs = reports(os.path.join(runs_dir, name))
+        runs = rtcsim.load_reports(os.path.join(args.runs_dir, name))
         if not runs:
             continue
-        t, points = model_table(runs, preset)
+        table, points = model_table(runs, PRESET)
         print(f"\n## {name}\n")
-        print(t)
+        print(table)
         groups[name + " models"] = points
-    mem = reports(os.path.join(runs_dir, "memory"))
+    mem = rtcsim.load_reports(os.path.join(args.runs_dir, "memory"))
     if mem:
         print("\n## memory\n")
         print(memory_table(mem))
-    scatter_svg(groups, os.path.join(os.path.dirname(__file__), "..", "docs", "images", "speedup_vs_area_ratio.svg"))
+    os.makedirs(args.images, exist_ok=True)
+    plot.speedup_vs_area_ratio(groups, title="speedup vs AABB/OBB surface-area ratio (all runs)").savefig(
+        os.path.join(args.images, "speedup_vs_area_ratio.svg"))
+    tilt_figure(fig3, PRESET).savefig(os.path.join(args.images, "fig3_speedup_vs_tilt.svg"))
+    if args.trace:
+        trace_heatmaps(args.trace, args.images)
 
 
 if __name__ == "__main__":

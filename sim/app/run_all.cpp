@@ -1,7 +1,6 @@
 #include "sim/app/run_all.h"
 
-#include "sim/calibrate/calibrate.h"
-#include "sim/calibrate/calibrate_config.h"
+#include "sim/app/calibrate_runs.h"
 #include "sim/calibrate/calibrate_report.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
@@ -48,79 +47,63 @@ void make_dir(const std::string& dir) {
 // by re-pricing the counts each run recorded (no tracing again).
 void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
                     const std::string& file, const std::string& out, bool quiet) {
-    if (!config.contains("calibrate"))
-        throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
-    const CalibrateDesc desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
-    std::vector<CalibrationRun> fit_runs;
-    std::vector<std::string> skipped;
-    for (RunResult& r : runs) {
-        const std::string label = r.sweep_label.empty() ? r.config.name : r.sweep_label;
-        const CalibrationTarget* target = find_target(desc, r.sweep_values, label);
-        MethodRun* ref = const_cast<MethodRun*>(r.baseline());
-        MethodRun* obb = const_cast<MethodRun*>(r.find(desc.method));
-        if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
-            skipped.push_back(label);
-            continue;
-        }
-        CalibrationRun run{label, ref->frame.totals, obb->frame.totals, nullptr, nullptr, target->speedup,
-                           target->weight};
-        if (ref->frame.warp_trace.waves() > 0 && obb->frame.warp_trace.waves() > 0) {
-            run.ref_warps = std::make_shared<WarpTrace>(std::move(ref->frame.warp_trace));
-            run.obb_warps = std::make_shared<WarpTrace>(std::move(obb->frame.warp_trace));
-        }
-        fit_runs.push_back(std::move(run));
-    }
-    std::vector<nlohmann::json> values;
-    std::vector<std::string> labels;
-    for (const RunResult& r : runs) {
-        values.push_back(r.sweep_values);
-        labels.push_back(r.sweep_label.empty() ? r.config.name : r.sweep_label);
-    }
-    const auto unmatched = unmatched_targets(desc, values, labels);
-    if (!unmatched.empty())
-        throw InputError(file + ": /calibrate/targets: no run matches " + unmatched.front());
-    if (fit_runs.empty()) throw InputError(file + ": /calibrate/targets: no run has a target");
-    CalibrationResult result;
-    try {
-        // Start from the named preset (so refitting does not start from its own
-        // previous output), else from the run's primary cost preset.
-        const CostModel start = desc.start.empty()
-                                    ? runs.front().costs.front()
-                                    : load_cost_model(resolve_config_path(desc.start, file));
-        result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
-    } catch (const std::invalid_argument& e) {
-        throw InputError(file + ": /calibrate: " + e.what());
-    }
-    const std::string report = calibration_report_markdown(result);
+    std::vector<RunResult*> pointers;
+    for (RunResult& r : runs) pointers.push_back(&r);
+    // The runs are done with their waves: move them into the fit.
+    const CalibrationOutcome fit = calibrate_results(pointers, config, file, [](RunResult&, MethodRun& m) {
+        return std::make_shared<const WarpTrace>(std::move(m.frame.warp_trace));
+    });
+    const std::string report = calibration_report_markdown(fit.result);
     write_text_file((std::filesystem::path(out) / "calibration.md").string(), report);
-    const std::string preset = calibrated_preset_json(result);
+    const std::string preset = calibrated_preset_json(fit.result);
     write_text_file((std::filesystem::path(out) / "calibrated_preset.json").string(), preset);
-    if (!desc.output.empty()) {
-        write_text_file(desc.output, preset);
-        if (!quiet) std::cerr << "fitted preset written to " << desc.output << "\n";
+    if (!fit.desc.output.empty()) {
+        write_text_file(fit.desc.output, preset);
+        if (!quiet) std::cerr << "fitted preset written to " << fit.desc.output << "\n";
     }
     std::cout << "\n" << report;
-    if (!skipped.empty() && !quiet)
-        std::cerr << skipped.size() << " run(s) without a target were not fitted\n";
+    if (!fit.skipped.empty() && !quiet)
+        std::cerr << fit.skipped.size() << " run(s) without a target were not fitted\n";
 }
 
 }  // namespace
 
-int run_all(const CliOptions& cli) {
-    nlohmann::json config = parse_json_text(read_text_file(cli.config), cli.config);
-    if (!config.is_object()) throw InputError(cli.config + ": /: expected a JSON object");
-    for (const std::string& s : cli.sets) apply_set(config, s, cli.config);
-    (void)sweep_point_count(config, cli.config, cli.limits);  // before expanding it
-    const std::vector<SweepPoint> points = expand_sweep(config, cli.config);
+RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vector<std::string>& sets,
+                  const WorkLimits& limits) {
+    if (!config.is_object()) throw InputError(file + ": /: expected a JSON object");
+    RunPlan plan;
+    plan.file = file;
+    plan.limits = limits;
+    for (const std::string& s : sets) apply_set(config, s, file);
+    (void)sweep_point_count(config, file, limits);  // before expanding it
+    plan.points = expand_sweep(config, file);
     // Parse every point before any work, so a bad value fails in a second.
-    std::vector<RunConfig> parsed;
     std::vector<WorkEstimate> estimates;
-    for (const SweepPoint& p : points) {
-        parsed.push_back(parse_run_config(p.config, cli.config));
-        estimates.push_back(estimate_config_work(parsed.back()));
+    for (const SweepPoint& p : plan.points) {
+        plan.parsed.push_back(parse_run_config(p.config, file));
+        estimates.push_back(estimate_config_work(plan.parsed.back()));
     }
-    const WorkEstimate work = combine_work(estimates);
-    check_work(work, cli.limits, cli.config);
+    plan.work = combine_work(estimates);
+    check_work(plan.work, limits, file);
+    plan.config = std::move(config);
+    return plan;
+}
+
+RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context) {
+    context.limits = plan.limits;
+    RunResult r = run_simulation(plan.parsed.at(i), plan.points.at(i).config, context);
+    r.sweep_values = plan.points[i].values;
+    r.sweep_label = plan.points[i].label;
+    return r;
+}
+
+int run_all(const CliOptions& cli) {
+    const RunPlan plan =
+        plan_runs(parse_json_text(read_text_file(cli.config), cli.config), cli.config, cli.sets, cli.limits);
+    const nlohmann::json& config = plan.config;
+    const std::vector<SweepPoint>& points = plan.points;
+    const std::vector<RunConfig>& parsed = plan.parsed;
+    const WorkEstimate& work = plan.work;
     const std::string out = cli.out ? *cli.out : "out/" + parsed.front().name;
     make_dir(out);
     if (!cli.quiet) {
@@ -145,10 +128,7 @@ int run_all(const CliOptions& cli) {
         ctx.quiet = cli.quiet;
         ctx.record_warps = cli.calibrate;
         ctx.out_dir = dir;
-        ctx.limits = cli.limits;
-        RunResult r = run_simulation(parsed[i], points[i].config, ctx);
-        r.sweep_values = points[i].values;
-        r.sweep_label = points[i].label;
+        RunResult r = run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
         (void)write_break_even_maps(r, dir);

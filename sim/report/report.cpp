@@ -124,7 +124,10 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     nlohmann::ordered_json j;
     j["rtcsim_version"] = kVersion;
     j["name"] = run.config.name;
-    if (!run.sweep_label.empty()) j["sweep_point"] = run.sweep_values;
+    if (!run.sweep_label.empty()) {
+        j["sweep_point"] = run.sweep_values;
+        j["sweep_label"] = run.sweep_label;
+    }
     j["config"] = run.effective_config;
     const SceneStats& s = run.scene;
     j["scene"] = scene_stats_json(s);

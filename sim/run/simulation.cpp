@@ -143,10 +143,12 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
             w.append(std::span<const TraceHit>(m.frame.hits));
             w.close();
         }
-        m.frame.rays.clear();
-        m.frame.rays.shrink_to_fit();
-        m.frame.hits.clear();
-        m.frame.hits.shrink_to_fit();
+        if (!ctx.keep_rays) {
+            m.frame.rays.clear();
+            m.frame.rays.shrink_to_fit();
+            m.frame.hits.clear();
+            m.frame.hits.shrink_to_fit();
+        }
         for (std::size_t k = 0; k < r.costs.size(); ++k) {
             const CostModel& cost = r.costs[k];
             PricedRun p = price(m.frame.totals, cost);

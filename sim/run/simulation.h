@@ -59,6 +59,7 @@ struct RunContext {
     unsigned threads = 0;
     bool quiet = false;
     bool record_warps = false;  // keep every wave (calibration re-prices them)
+    bool keep_rays = false;     // keep the recorded rays and hits in the result (the Python module's arrays)
     std::string out_dir;  // rays/hits files are streamed here when requested
     WorkLimits limits;    // checked again once the scene is loaded
 };

@@ -1,7 +1,8 @@
 // The architecture as a test (docs/architecture.md): sim/'s folders include
-// only the folders below them, no source file grows past ~400 lines, no
-// folder past ~15 files. The link graph (one CMake library per folder) catches
-// back-edges between .cpp files; this catches header-only ones too.
+// only the folders below them, no source file (C++ or Python) grows past ~400
+// lines, no folder of sim/ or python/ past ~15 files. The link graph (one
+// CMake library per folder) catches back-edges between .cpp files; this
+// catches header-only ones too.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -34,7 +35,7 @@ const fs::path kRoot = RTCSIM_SOURCE_DIR;
 
 bool is_source(const fs::path& p) {
     const std::string e = p.extension().string();
-    return e == ".h" || e == ".cpp";
+    return e == ".h" || e == ".cpp" || e == ".py";
 }
 
 }  // namespace
@@ -68,11 +69,13 @@ TEST_CASE("architecture: every sim/ folder includes only the folders below it") 
 }
 
 TEST_CASE("architecture: files stay under ~400 lines and folders under ~15 files") {
-    for (const char* top : {"sim", "core", "intersectors", "scenes", "tests"}) {
+    for (const char* top : {"sim", "core", "intersectors", "scenes", "tests", "python"}) {
+        if (!fs::exists(kRoot / top)) continue;
         for (const auto& e : fs::recursive_directory_iterator(kRoot / top)) {
             const std::string rel = fs::relative(e.path(), kRoot).string();
             CAPTURE(rel);
-            if (e.is_directory() && std::string(top) == "sim") {
+            if (rel.find("__pycache__") != std::string::npos) continue;
+            if (e.is_directory() && (std::string(top) == "sim" || std::string(top) == "python")) {
                 int files = 0;
                 for (const auto& f : fs::directory_iterator(e.path())) files += f.is_regular_file();
                 CHECK(files <= 16);  // ~15 plus the folder's CMakeLists.txt

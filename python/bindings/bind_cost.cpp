@@ -1,0 +1,126 @@
+// Cost presets, priced runs and pricing without tracing: cycles are a pure
+// function of the counts (sim/hardware/cost_model.h), so Python can re-price
+// a traced run under any preset, or under costs it edits itself.
+#include "common.h"
+#include "priced.h"
+
+#include "sim/util/json_file.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rtc::py_bind {
+
+namespace {
+
+py::array_t<double> to_array(const std::array<double, kEventCount>& a) {
+    py::array_t<double> out(static_cast<py::ssize_t>(kEventCount));
+    std::copy(a.begin(), a.end(), out.mutable_data());
+    return out;
+}
+
+py::dict execution_dict(const ExecutionModel& e) {
+    py::dict d;
+    d["model"] = execution_name(e.kind);
+    d["warp_width"] = e.warp_width;
+    d["tile"] = py::make_tuple(e.tile_width, e.tile_height);
+    d["rt_parallel_lanes"] = e.rt_parallel_lanes;
+    return d;
+}
+
+py::dict warp_dict(const WarpTotals& w, int width) {
+    py::dict d;
+    d["cycles"] = w.cycles();
+    d["shader"] = w.shader;
+    d["rt_unit"] = w.rt;
+    d["hand_off"] = w.handoff;
+    d["programs"] = w.programs;
+    d["rt_lane_sum"] = w.rt_lane_sum;
+    d["waves"] = w.waves;
+    d["lanes"] = w.lanes;
+    d["rounds"] = w.rounds;
+    d["active_lane_rounds"] = w.active_lane_rounds;
+    d["simt_efficiency"] = w.simt_efficiency(width);
+    d["rt_simt_efficiency"] = w.rt_efficiency(width);
+    d["occupancy"] = w.occupancy(width);
+    return d;
+}
+
+EventTotals totals_from(const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>& a) {
+    if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != kEventCount)
+        throw std::invalid_argument("expected one count per event (" + std::to_string(kEventCount) +
+                                    " values in EVENT_NAMES order)");
+    EventTotals t;
+    std::copy(a.data(), a.data() + kEventCount, t.n.begin());
+    return t;
+}
+
+}  // namespace
+
+void bind_cost(py::module_& m) {
+    py::class_<CostModel>(m, "CostModel", "A hardware cost preset (configs/hw/*.json): cycles per event.")
+        .def_static("load", &load_cost_model, py::arg("path"), "Reads a preset file (strict, as the CLI).")
+        .def_static("from_json", &parse_cost_model, py::arg("text"), py::arg("file") = "<python>",
+                    "Parses preset JSON text; errors name `file` and the JSON path.")
+        .def("to_json", &cost_model_to_json, "The preset in the configs/hw format.")
+        .def_readwrite("name", &CostModel::name)
+        .def_readwrite("description", &CostModel::description)
+        .def_readwrite("features", &CostModel::features)
+        .def_property("cycles", [](const CostModel& c) { return to_array(c.cycles); },
+                      [](CostModel& c, const py::array_t<double, py::array::forcecast>& v) {
+                          if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != kEventCount)
+                              throw std::invalid_argument("expected one cost per event");
+                          for (std::size_t i = 0; i < kEventCount; ++i) {
+                              if (!std::isfinite(v.at(i)) || v.at(i) < 0.0)
+                                  throw std::invalid_argument("cost of " + std::string(kEventNames[i]) +
+                                                              " must be finite and >= 0");
+                              c.cycles[i] = v.at(i);
+                          }
+                      },
+                      "Cycles per event, in EVENT_NAMES order (a copy; assign a whole array to change).")
+        .def_property_readonly("sources", [](const CostModel& c) {
+            return std::vector<std::string>(c.source.begin(), c.source.end());
+        }, "Provenance of each cost, in EVENT_NAMES order.")
+        .def("set_source", [](CostModel& c, std::size_t event, std::string s) {
+            c.source.at(event) = std::move(s);
+        }, py::arg("event"), py::arg("source"))
+        .def_property_readonly("execution", [](const CostModel& c) { return execution_dict(c.execution); },
+                               "The execution model: per_ray or warp (width, tile, rt_parallel_lanes).")
+        .def_property_readonly("is_warp", [](const CostModel& c) { return c.execution.warp(); })
+        .def("copy", [](const CostModel& c) { return c; })
+        .def("__copy__", [](const CostModel& c) { return c; })
+        .def("__deepcopy__", [](const CostModel& c, py::dict) { return c; })
+        .def("__repr__", [](const CostModel& c) {
+            return "<CostModel " + c.name + " (" + execution_name(c.execution.kind) + ")>";
+        });
+
+    py::class_<Priced>(m, "PricedRun", "Cycles of one run's counts under one preset.")
+        .def_property_readonly("supported", [](const Priced& p) { return p.run.supported; },
+                               "False: the preset's hardware lacks a feature the method needs.")
+        .def_property_readonly("missing_feature", [](const Priced& p) { return p.run.missing_feature; })
+        .def_property_readonly("execution", [](const Priced& p) { return execution_name(p.run.execution); })
+        .def_property_readonly("total_cycles", [](const Priced& p) { return p.run.total_cycles; },
+                               "Under the preset's execution model.")
+        .def_property_readonly("per_ray_cycles", [](const Priced& p) { return p.run.per_ray_cycles; },
+                               "The per-ray sum, whatever the model.")
+        .def_property_readonly("by_event", [](const Priced& p) { return to_array(p.run.by_event); },
+                               "Per-ray-model cycles of each event, in EVENT_NAMES order.")
+        .def_property_readonly("warp", [](const Priced& p) -> py::object {
+            if (!p.warp) return py::none();
+            return warp_dict(*p.warp, p.warp_width);
+        }, "The warp model's figures (waves, rounds, SIMT efficiency, cycles by unit), or None.")
+        .def("__repr__", [](const Priced& p) {
+            return "<PricedRun " + std::to_string(p.run.total_cycles) + " cycles (" +
+                   execution_name(p.run.execution) + ")>";
+        });
+
+    m.def("price_totals", [](const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>& counts,
+                             const CostModel& model) {
+        Priced p;
+        p.run = price(totals_from(counts), model);
+        return p;
+    }, py::arg("counts"), py::arg("model"),
+          "Per-ray model: cycles = sum(count[e] * cost[e]) of event totals (EVENT_NAMES order).");
+}
+
+}  // namespace rtc::py_bind

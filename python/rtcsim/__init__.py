@@ -1,0 +1,36 @@
+"""rtcsim: a simulator of GPU ray-tracing hardware with a cost model, from Python.
+
+    import rtcsim
+    result = rtcsim.run("configs/runs/quickstart.json", threads=2)
+    print(result.speedup("obb"))                       # cycles(ref) / cycles(obb)
+    counts = result["obb"].pixel_counts                # (H, W, events) uint32, no copy
+    rtcsim.price(result["obb"], "turing-guess")        # re-priced without tracing
+
+Configs, presets and errors are the `simulate` CLI's (rtcsim.InputError
+carries its one-line "<file>: <JSON path>: <problem>" message). Figures:
+rtcsim.plot (matplotlib), also `python3 -m rtcsim.plot report.json --out DIR`.
+"""
+from ._rtcsim import (EVENT_NAMES, EVENT_UNITS, Calibration, CostModel, InputError, PricedRun, Scene,
+                      __version__, method_names)
+from .api import (PRESET_DIR, calibrate, load_cost_model, load_scene, plan, price, run, simulate,
+                  summary_table, sweep)
+from .report import Report, load_report, load_reports
+from .results import EVENT_INDEX, MethodResult, Result, event_index
+
+for _cls in (Calibration, CostModel, InputError, PricedRun, Scene):
+    _cls.__module__ = __name__  # shown as rtcsim.X in messages and help()
+
+__all__ = [
+    "EVENT_NAMES", "EVENT_UNITS", "EVENT_INDEX", "Calibration", "CostModel", "InputError", "PricedRun",
+    "Scene", "MethodResult", "Result", "Report", "PRESET_DIR", "__version__", "calibrate", "event_index",
+    "load_cost_model", "load_report", "load_reports", "load_scene", "method_names", "plan", "price", "run",
+    "simulate", "summary_table", "sweep", "plot",
+]
+
+
+def __getattr__(name):
+    # rtcsim.plot imports matplotlib: only when asked for.
+    if name == "plot":
+        import importlib
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module 'rtcsim' has no attribute {name!r}")

@@ -1,0 +1,173 @@
+"""Finished runs as Python objects: a `Report` reads report.json (what the
+CLI writes for every run and sweep point) and answers the questions the
+tables and figures ask: speedups per preset, events and cycles per ray,
+surface-area ratio, memory. A live `rtcsim.Result` is a Report too, built
+from the same report_json, plus the per-pixel NumPy arrays.
+"""
+import glob
+import json
+import os
+
+
+class Report:
+    """One run's report.json, read-only. `data` is the parsed JSON."""
+
+    def __init__(self, data, path=None):
+        self.data = data
+        self.path = path
+
+    # -- identity -------------------------------------------------------------
+    @property
+    def name(self):
+        return self.data["name"]
+
+    @property
+    def sweep_point(self):
+        """{sweep key: value} of this point ({} for a run without a sweep)."""
+        return self.data.get("sweep_point", {})
+
+    @property
+    def label(self):
+        """The sweep point's label (as in the summary table), else the run's name."""
+        if "sweep_label" in self.data:
+            return self.data["sweep_label"]
+        if self.sweep_point:
+            return " ".join(f"{k}={v if isinstance(v, str) else json.dumps(v)}"
+                            for k, v in self.sweep_point.items())
+        return self.name
+
+    @property
+    def config(self):
+        """The effective configuration of this run (overrides and sweep applied)."""
+        return self.data["config"]
+
+    @property
+    def baseline(self):
+        return self.config.get("baseline", "ref")
+
+    @property
+    def method_names(self):
+        return list(self.data["methods"])
+
+    @property
+    def others(self):
+        """The methods compared against the baseline."""
+        return [m for m in self.method_names if m != self.baseline]
+
+    @property
+    def cost_presets(self):
+        return list(self.data["cost_presets"])
+
+    @property
+    def kind(self):
+        return self.data["scene"]["primitive_kind"]
+
+    @property
+    def primitives(self):
+        return self.data["scene"]["primitives"]
+
+    # -- per method -----------------------------------------------------------
+    def _method(self, method):
+        try:
+            return self.data["methods"][method]
+        except KeyError:
+            raise KeyError(f"no method {method!r} in run {self.label!r} "
+                           f"(has {', '.join(self.method_names)})") from None
+
+    def _preset(self, preset):
+        presets = self.cost_presets
+        if preset is None:
+            return presets[0]
+        if isinstance(preset, int):
+            return presets[preset]
+        name = getattr(preset, "name", preset)
+        if name not in presets:
+            raise KeyError(f"no cost preset {name!r} in run {self.label!r} (has {', '.join(presets)})")
+        return name
+
+    def runnable(self, method):
+        return bool(self._method(method).get("runnable"))
+
+    def rays(self, method):
+        return self._method(method).get("rays", 0)
+
+    def events(self, method):
+        """{event name: total} of a method (empty when it did not run)."""
+        m = self._method(method)
+        return {k: v["total"] for k, v in m.get("events", {}).items()}
+
+    def per_ray(self, method, event):
+        """Events per ray, or None when the method did not run."""
+        m = self._method(method)
+        return m["events"][event]["per_ray"] if m.get("runnable") else None
+
+    def is_per_ray(self, method):
+        """Intersection-program calls per ray."""
+        return self.per_ray(method, "is_call")
+
+    def cycles(self, method, preset=None):
+        """Total cycles of a method under a preset (its execution model), None if n/a."""
+        m = self._method(method)
+        entry = m.get("cycles", {}).get(self._preset(preset)) if m.get("runnable") else None
+        return entry.get("total") if entry else None
+
+    def cycles_per_ray(self, method, preset=None):
+        m = self._method(method)
+        entry = m.get("cycles", {}).get(self._preset(preset)) if m.get("runnable") else None
+        return entry.get("per_ray") if entry else None
+
+    def cycle_breakdown(self, method, preset=None):
+        """{event: cycles} of the per-ray model (events that cost anything)."""
+        m = self._method(method)
+        entry = m.get("cycles", {}).get(self._preset(preset)) if m.get("runnable") else None
+        return dict(entry.get("breakdown", {})) if entry else {}
+
+    def memory_total(self, method):
+        m = self._method(method)
+        return m["memory_bytes"]["total"] if m.get("runnable") else None
+
+    def memory_overhead(self, method=None):
+        """Total memory of `method` over the baseline's, in percent (None: n/a)."""
+        method = method or self.others[0]
+        return (self.data.get("memory_overhead_percent") or {}).get(method)
+
+    # -- comparisons ----------------------------------------------------------
+    def speedup(self, method=None, preset=None):
+        """cycles(baseline) / cycles(method) under a preset (name, index or
+        CostModel; default the primary), or None when not available."""
+        method = method or self.others[0]
+        table = self.data.get(f"speedup_over_{self.baseline}") or {}
+        return (table.get(method) or {}).get(self._preset(preset))
+
+    def area_ratio(self, tight=False):
+        """Sum of primitive AABB areas over sum of OBB areas (paper or tight OBBs)."""
+        a = self.data["scene"]["surface_area"]
+        return a["aabb_over_obb_tight" if tight else "aabb_over_obb_paper"]
+
+    def __repr__(self):
+        return f"<Report {self.label!r}: {', '.join(self.method_names)}>"
+
+
+def load_report(path):
+    """A report.json file, or the report.json inside a directory."""
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        path = os.path.join(path, "report.json")
+    with open(path) as f:
+        return Report(json.load(f), path)
+
+
+def load_reports(directory):
+    """Every report of a CLI output directory: its report.json (one run), or
+    the sweep points' `<index>_<label>/report.json` in index order."""
+    directory = os.fspath(directory)
+    single = os.path.join(directory, "report.json")
+    if os.path.isfile(single):
+        return [load_report(single)]
+
+    def index(path):
+        head = os.path.basename(os.path.dirname(path)).split("_")[0]
+        return int(head) if head.isdigit() else 1 << 30
+
+    paths = sorted(glob.glob(os.path.join(directory, "*", "report.json")), key=lambda p: (index(p), p))
+    return [load_report(p) for p in paths]

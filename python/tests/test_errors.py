@@ -1,0 +1,85 @@
+"""Bad input fails from Python with exactly the CLI's one-line message."""
+import json
+
+import pytest
+
+import rtcsim
+from conftest import TINY
+
+BAD_SETS = [
+    ["workload.spp=-4"],
+    ["workload.width=0"],
+    ["methods=[\"ref\",\"nope\"]"],
+    ["scene.count=0"],
+    ["bogus_key=1"],
+    ["primitives.kind=\"spline\""],
+    ["cost=\"no/such/preset.json\""],
+    ["workload.type=\"film\""],
+    ["sweep={\"scene.tilt_deg\": []}"],
+    ["workload.spp=10000000"],  # the work estimate: above --max-rays
+]
+
+
+@pytest.mark.parametrize("sets", BAD_SETS, ids=[s[0] for s in BAD_SETS])
+def test_bad_config_message_matches_cli(simulate, sets, tmp_path):
+    cli = simulate(TINY, "--quiet", "--out", tmp_path, *[a for s in sets for a in ("--set", s)])
+    assert cli.returncode == 2, cli.stderr
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(TINY, progress=False, sets=sets)
+    assert str(err.value) == cli.stderr.strip()
+
+
+def test_limits_as_the_cli():
+    sets = ["workload.spp=10000000"]
+    p = rtcsim.plan(TINY, sets, limits={"force": True})  # planned, not run
+    assert p.estimate["rays"] > 1e10
+    with pytest.raises(rtcsim.InputError, match="--max-rays"):
+        rtcsim.plan(TINY, ["workload.spp=100"], limits={"max_rays": 1000})
+    with pytest.raises(ValueError, match="unknown key"):
+        rtcsim.plan(TINY, limits={"max_ray": 1})
+
+
+def test_missing_file_matches_cli(simulate, tmp_path):
+    cli = simulate("no/such/config.json", "--quiet", "--out", tmp_path)
+    assert cli.returncode == 2
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run("no/such/config.json", progress=False)
+    assert str(err.value) == cli.stderr.strip()
+
+
+def test_bad_json_matches_cli(simulate, tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"name": "x", "scene": {"type": "bundle",}}')
+    cli = simulate(bad, "--quiet", "--out", tmp_path / "out")
+    assert cli.returncode == 2
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(bad, progress=False)
+    assert str(err.value) == cli.stderr.strip()
+
+
+def test_dict_config_names_the_key():
+    with open(TINY) as f:
+        config = json.load(f)
+    config["workload"]["spp"] = -4
+    with pytest.raises(rtcsim.InputError, match=r"^<dict>: /workload/spp: expected a positive integer, got -4$"):
+        rtcsim.run(config, progress=False)
+    # `base` names the config in messages and anchors its relative paths.
+    with pytest.raises(rtcsim.InputError, match=r"^tests/configs/tiny.json: /workload/spp: "):
+        rtcsim.run(config, progress=False, base=TINY)
+    assert isinstance(rtcsim.InputError("x"), ValueError)
+
+
+def test_sweep_needs_sweep():
+    with pytest.raises(ValueError, match="sweep points"):
+        rtcsim.run(TINY, progress=False, sets={"sweep": {"scene.tilt_deg": [0, 45]}})
+
+
+def test_bad_preset_and_price_inputs():
+    with pytest.raises(rtcsim.InputError, match="no-such-preset"):
+        rtcsim.load_cost_model("no-such-preset")
+    with pytest.raises(ValueError, match="events"):
+        rtcsim.price([1, 2, 3], "turing-guess")
+    with pytest.raises(KeyError, match="unknown event"):
+        rtcsim.price({"teleport": 1}, "turing-guess")
+    with pytest.raises(ValueError, match="threads"):
+        rtcsim.run(TINY, threads=-1, progress=False)

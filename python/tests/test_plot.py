@@ -1,0 +1,123 @@
+"""The matplotlib figures, from a live result and from finished CLI runs,
+and `python3 -m rtcsim.plot report.json --out DIR`."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import rtcsim
+from conftest import TINY
+from rtcsim import plot
+
+SWEEP = {"workload.width": 16, "workload.height": 16, "output.images": False,
+         "sweep": {"scene.tilt_deg": [0, 30, 60], "scene.count": [10, 40]}}
+
+
+@pytest.fixture(scope="module")
+def sweep_dir(simulate, tmp_path_factory):
+    out = tmp_path_factory.mktemp("sweep")
+    sets = [a for k, v in SWEEP.items() for a in ("--set", f"{k}={__import__('json').dumps(v)}")]
+    cli = simulate(TINY, "--quiet", "--out", out, *sets)
+    assert cli.returncode == 0, cli.stderr
+    return out
+
+
+def saved(fig, path):
+    fig.savefig(path)
+    assert path.stat().st_size > 1000
+    return path
+
+
+def test_maps_from_a_live_result(tiny, tmp_path):
+    fig = plot.heatmaps(tiny)
+    assert len(fig.axes) == 3  # two maps and one shared colour bar
+    bar = fig.axes[-1]
+    # One scale for both methods: the CLI's (99.5th percentile of all pixels).
+    both = np.concatenate([tiny.pixel_cycles(m).ravel() for m in ("ref", "obb")])
+    assert bar.get_ylim()[1] == pytest.approx(np.percentile(both, 99.5))
+    saved(fig, tmp_path / "heat.png")
+    saved(plot.heatmap(tiny, "obb", "is_call"), tmp_path / "calls.png")
+    saved(plot.heatmaps(tiny, log=True), tmp_path / "log.png")
+    fig = plot.ratio_map(tiny)
+    image = fig.axes[0].images[0]
+    ratio = image.get_array()
+    a, b = tiny.pixel_cycles("ref"), tiny.pixel_cycles("obb")
+    on = (a > 0) & (b > 0)
+    assert np.allclose(ratio[on], (a / b)[on])
+    lo, hi = image.norm.vmin, image.norm.vmax
+    assert lo == pytest.approx(1 / hi)  # centred at 1 on a log scale
+    saved(fig, tmp_path / "ratio.png")
+    saved(plot.render(tiny), tmp_path / "render.png")
+    saved(plot.speedup_table(tiny), tmp_path / "table.png")
+    saved(plot.cycle_breakdown(tiny), tmp_path / "breakdown.svg")
+
+
+def test_break_even_matches_pricing(tiny, tmp_path):
+    fig = plot.break_even(tiny, "context_switch", ["instance_transform"], (10, 1000), (1, 100), cells=8)
+    rgb = fig.axes[0].images[0].get_array()
+    assert rgb.shape == (8, 8, 3)
+    # Corners: cheap switches favour ref, dear ones obb (the masquerade avoids them).
+    model = rtcsim.load_cost_model("turing-guess").copy()
+    for (iy, ix) in ((0, 0), (7, 7), (0, 7), (7, 0)):
+        c = model.cycles
+        c[rtcsim.EVENT_INDEX["context_switch"]] = 10 * 100 ** ((ix + 0.5) / 8)
+        c[rtcsim.EVENT_INDEX["instance_transform"]] = 100 ** ((iy + 0.5) / 8)
+        model.cycles = c
+        cycles = {m: rtcsim.price(tiny[m], model).total_cycles for m in ("ref", "obb")}
+        best = min(cycles, key=cycles.get)
+        leg = fig.axes[0].get_legend()
+        handles = getattr(leg, "legend_handles", None) or leg.legendHandles  # matplotlib < 3.7
+        legend = {t.get_text(): h.get_color() for t, h in zip(leg.get_texts(), handles)}
+        want = np.array(__import__("matplotlib").colors.to_rgb(legend[best]))
+        close = max(cycles.values()) / min(cycles.values()) < 1.1
+        assert np.allclose(rgb[iy, ix], 0.55 * want + 0.45 if close else want)
+    saved(fig, tmp_path / "break_even.png")
+    config = dict(tiny.config, break_even=[{"name": "a", "preset": "turing-guess", "cells": 4,
+                                            "x": {"events": ["context_switch"], "min": 10, "max": 1000},
+                                            "y": {"events": ["ray"], "min": 10, "max": 1000}}])
+    tiny.data["config"], saved_config = config, tiny.data["config"]
+    try:
+        assert list(plot.break_even_maps(tiny)) == ["a"]
+    finally:
+        tiny.data["config"] = saved_config
+
+
+def test_figures_from_reports(sweep_dir, tmp_path):
+    runs = rtcsim.load_reports(sweep_dir)
+    assert len(runs) == 6
+    assert plot.numeric_axes(runs) == ["scene.count", "scene.tilt_deg"]
+    fig = plot.speedup_vs_axis(runs, "scene.tilt_deg")
+    lines = [line for line in fig.axes[0].get_lines() if line.get_marker() == "o"]
+    assert len(lines) == 2  # one per count
+    want = sorted((r.sweep_point["scene.tilt_deg"], r.speedup()) for r in runs
+                  if r.sweep_point["scene.count"] == 10)
+    line = next(line for line in lines if line.get_label() == "scene.count=10")
+    assert list(line.get_xdata()) == [w[0] for w in want]
+    assert np.allclose(line.get_ydata(), [w[1] for w in want])
+    saved(fig, tmp_path / "tilt.png")
+    fig = plot.speedup_vs_area_ratio({"bundles": runs, "extra": [(3.0, 1.5, "a point")]})
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "a point" in texts and runs[0].label in texts
+    saved(fig, tmp_path / "area.svg")
+    table = plot.speedup_table(runs)
+    cells = table.axes[0].tables[0].get_celld()
+    assert cells[(1, 0)].get_text().get_text() == runs[0].label
+    with pytest.raises(ValueError, match="sweep axis"):
+        plot.speedup_vs_axis(runs, "scene.radius")
+
+
+def test_plot_command(sweep_dir, tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    first = next(sweep_dir.glob("0_*")) / "report.json"
+    one = subprocess.run([sys.executable, "-m", "rtcsim.plot", str(first), "--out", str(tmp_path / "one")],
+                         capture_output=True, text=True, env=env)
+    assert one.returncode == 0, one.stderr
+    assert sorted(os.listdir(tmp_path / "one")) == ["cycles_by_event.png", "speedup_table.png"]
+    many = subprocess.run([sys.executable, "-m", "rtcsim.plot", str(sweep_dir), "--out", str(tmp_path / "many"),
+                           "--format", "svg"], capture_output=True, text=True, env=env)
+    assert many.returncode == 0, many.stderr
+    assert sorted(os.listdir(tmp_path / "many")) == [
+        "speedup_table.svg", "speedup_vs_area_ratio.svg", "speedup_vs_scene.count.svg",
+        "speedup_vs_scene.tilt_deg.svg"]

@@ -1,0 +1,63 @@
+#include "sim/app/calibrate_runs.h"
+
+#include "core/input_error.h"
+#include "sim/config/run_config.h"
+#include "sim/util/json_reader.h"
+
+#include <stdexcept>
+
+namespace rtc {
+
+namespace {
+
+std::string label_of(const RunResult& r) { return r.sweep_label.empty() ? r.config.name : r.sweep_label; }
+
+}  // namespace
+
+CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlohmann::json& config,
+                                     const std::string& file, const WarpTraceSource& warps) {
+    if (!config.is_object() || !config.contains("calibrate"))
+        throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
+    CalibrationOutcome out;
+    out.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
+    const CalibrateDesc& desc = out.desc;
+    std::vector<CalibrationRun> fit_runs;
+    for (RunResult* r : runs) {
+        const std::string label = label_of(*r);
+        const CalibrationTarget* target = find_target(desc, r->sweep_values, label);
+        MethodRun* ref = const_cast<MethodRun*>(r->baseline());
+        MethodRun* obb = const_cast<MethodRun*>(r->find(desc.method));
+        if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
+            out.skipped.push_back(label);
+            continue;
+        }
+        CalibrationRun run{label, ref->frame.totals, obb->frame.totals, nullptr, nullptr, target->speedup,
+                           target->weight};
+        if (warps && ref->frame.warp_trace.waves() > 0 && obb->frame.warp_trace.waves() > 0) {
+            run.ref_warps = warps(*r, *ref);
+            run.obb_warps = warps(*r, *obb);
+        }
+        fit_runs.push_back(std::move(run));
+    }
+    std::vector<nlohmann::json> values;
+    std::vector<std::string> labels;
+    for (const RunResult* r : runs) {
+        values.push_back(r->sweep_values);
+        labels.push_back(label_of(*r));
+    }
+    const auto unmatched = unmatched_targets(desc, values, labels);
+    if (!unmatched.empty()) throw InputError(file + ": /calibrate/targets: no run matches " + unmatched.front());
+    if (fit_runs.empty()) throw InputError(file + ": /calibrate/targets: no run has a target");
+    try {
+        // Start from the named preset (so refitting does not start from its own
+        // previous output), else from the run's primary cost preset.
+        const CostModel start = desc.start.empty() ? runs.front()->costs.front()
+                                                   : load_cost_model(resolve_config_path(desc.start, file));
+        out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
+    } catch (const std::invalid_argument& e) {
+        throw InputError(file + ": /calibrate: " + e.what());
+    }
+    return out;
+}
+
+}  // namespace rtc
