@@ -15,6 +15,7 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
     b.instances = static_cast<double>(c.instances) * m.instance_bytes;
     b.custom_prims = static_cast<double>(c.custom_prims) * m.custom_prim_bytes;
     b.triangles = static_cast<double>(c.triangles) * m.triangle_bytes;
+    b.blas_headers = static_cast<double>(c.blases) * m.blas_bytes;
     b.common = static_cast<double>(primitives) *
                    m.primitive_data_bytes[static_cast<std::size_t>(kind)] +
                static_cast<double>(mesh_vertices) * m.mesh_vertex_bytes +
@@ -30,7 +31,7 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
     const JsonReader bytes = r.child("bytes");
-    bytes.allow_only({"node_w2", "node_w4", "node_w8", "custom_prim", "triangle", "instance",
+    bytes.allow_only({"node_w2", "node_w4", "node_w8", "custom_prim", "triangle", "instance", "blas",
                       "cylinder_data", "capsule_data", "link_data", "phantom_data", "mesh_vertex",
                       "mesh_triangle"});
     const auto read = [&](const char* key, double& out) {
@@ -45,6 +46,7 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     read("custom_prim", m.custom_prim_bytes);
     read("triangle", m.triangle_bytes);
     read("instance", m.instance_bytes);
+    read("blas", m.blas_bytes);
     read("cylinder_data", m.primitive_data_bytes[0]);
     read("capsule_data", m.primitive_data_bytes[1]);
     read("link_data", m.primitive_data_bytes[2]);

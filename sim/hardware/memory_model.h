@@ -19,6 +19,7 @@ struct MemoryModel {
     double custom_prim_bytes = 32;  // per custom-primitive AABB in a BLAS leaf
     double triangle_bytes = 48;     // per triangle in a BLAS (hardware format)
     double instance_bytes = 250;    // per TLAS instance
+    double blas_bytes = 192;        // per BLAS: header and alignment padding of its buffer
     std::array<double, 4> primitive_data_bytes{32, 32, 32, 64};  // per PrimitiveKind
     double mesh_vertex_bytes = 12, mesh_triangle_bytes = 12;     // shared mesh data
     std::uint64_t instance_limit = 1u << 24;
@@ -33,14 +34,16 @@ struct MemoryModel {
 // computed from the scene when the method is not built).
 struct StructureCounts {
     std::uint64_t tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    std::uint64_t blases = 0;  // distinct BLASes (each has a header and an aligned buffer)
     int width = 4;
 };
 
 struct MemoryBreakdown {
     double tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
+    double blas_headers = 0;
     double common = 0;  // primitive data + mesh, shared by every method
     [[nodiscard]] double acceleration() const {
-        return tlas_nodes + blas_nodes + instances + custom_prims + triangles;
+        return tlas_nodes + blas_nodes + instances + custom_prims + triangles + blas_headers;
     }
     [[nodiscard]] double total() const { return acceleration() + common; }
 };

@@ -65,7 +65,8 @@ public:
 
 struct MethodEntry {
     MethodInfo info;
-    std::function<std::uint64_t(const Geometry&)> instance_count;
+    // May depend on the options (a method that groups primitives into instances).
+    std::function<std::uint64_t(const Geometry&, const MethodOptions&)> instance_count;
     // Throws std::invalid_argument on a primitive whose bounds are not finite.
     std::function<std::unique_ptr<BuiltMethod>(const Geometry&, const MethodOptions&)> build;
 };

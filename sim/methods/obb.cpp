@@ -38,7 +38,7 @@ TwoLevelStructures build_obb(const std::vector<Prim>& prims, const Geometry& g, 
 MethodEntry obb_method() {
     return {{"obb", "one instance per primitive mapping a unit-box BLAS onto its OBB (the masquerade)",
              {"custom_primitives", "instance_transforms"}},
-            [](const Geometry& g) -> std::uint64_t {
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t {
                 return g.primitive_count() + (g.triangles.empty() ? 0 : 1);
             },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {

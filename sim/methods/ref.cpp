@@ -35,7 +35,7 @@ TwoLevelStructures build_ref(const std::vector<Prim>& prims, const Geometry& g, 
 MethodEntry ref_method() {
     return {{"ref", "custom-primitive AABBs in one BLAS; a context switch per leaf box reached",
              {"custom_primitives"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<TwoLevelMethod<RefLeaf>>>(
                     std::visit([&](const auto& prims) { return build_ref(prims, g, o); }, g.prims));

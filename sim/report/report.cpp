@@ -63,14 +63,16 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
     const MemoryBreakdown& mem = m.memory;
     j["memory_bytes"] = {{"tlas_nodes", mem.tlas_nodes},     {"blas_nodes", mem.blas_nodes},
                          {"instances", mem.instances},       {"custom_prims", mem.custom_prims},
-                         {"triangles", mem.triangles},       {"acceleration", mem.acceleration()},
+                         {"triangles", mem.triangles},       {"blas_headers", mem.blas_headers},
+                         {"acceleration", mem.acceleration()},
                          {"common", mem.common},             {"total", mem.total()}};
     j["structures"] = {{"width", m.structures.width},
                        {"tlas_nodes", m.structures.tlas_nodes},
                        {"blas_nodes", m.structures.blas_nodes},
                        {"instances", m.structures.instances},
                        {"custom_prims", m.structures.custom_prims},
-                       {"triangles", m.structures.triangles}};
+                       {"triangles", m.structures.triangles},
+                       {"blases", m.structures.blases}};
     j["simulator"] = {{"build_seconds", m.build_seconds},
                       {"trace_seconds", m.frame.trace_seconds},
                       {"rays_per_second", m.frame.trace_seconds > 0

@@ -204,8 +204,8 @@ TEST_CASE("methods: all-candidates IS calls equal the AABBs (ref) and OBBs (obb)
 TEST_CASE("methods: instance counts and structure of each method") {
     Rng rng(3);
     const Geometry g = random_geometry(rng, PrimitiveKind::Capsule, 100, true);
-    CHECK(find_method("ref")->instance_count(g) == 2);
-    CHECK(find_method("obb")->instance_count(g) == 101);
+    CHECK(find_method("ref")->instance_count(g, options(4)) == 2);
+    CHECK(find_method("obb")->instance_count(g, options(4)) == 101);
     const auto obb = build("obb", g, options(4));
     const StructureCounts c = obb->structures();
     CHECK(c.instances == 101);
