@@ -30,11 +30,22 @@
 
 namespace rtc {
 
+// How `cluster` groups primitives and frames each group (config block
+// "cluster", configs/README.md; cluster_groups.h says what each choice costs).
+enum class ClusterStrategy : std::uint8_t { Strand, Orientation };
+enum class ClusterFrame : std::uint8_t { Best, Principal };
+struct ClusterOptions {
+    ClusterStrategy strategy = ClusterStrategy::Orientation;
+    int size = 16;  // primitives per cluster (at most; see cluster_groups.h)
+    ClusterFrame frame = ClusterFrame::Best;
+};
+
 struct MethodOptions {
     BuildOptions custom_blas;     // leaf size 1: one box per custom primitive
     BuildOptions triangle_blas;   // triangles may share leaves
     BuildOptions tlas;            // leaf size 1: one box per instance
     ObbVariant obb = ObbVariant::Paper;
+    ClusterOptions cluster;       // only the cluster method reads it
 };
 
 struct MethodInfo {

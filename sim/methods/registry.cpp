@@ -9,7 +9,8 @@ namespace rtc {
 // name_method()` defined in sim/methods/name.cpp.
 #define RTCSIM_BUILTIN_METHODS(X) \
     X(ref)                        \
-    X(obb)
+    X(obb)                        \
+    X(cluster)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)
