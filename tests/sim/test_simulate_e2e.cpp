@@ -125,6 +125,7 @@ TEST_CASE("simulate e2e: a sweep writes one row per point and a plot") {
     CHECK(csv.find("scene.tilt_deg=0") != std::string::npos);
     CHECK(csv.find("scene.tilt_deg=45") != std::string::npos);
     CHECK(fs::exists(dir + "/speedup_vs_scene.tilt_deg.svg"));
+    CHECK(slurp(dir + "/speedup_vs_memory.svg").find("memory overhead (Pareto)") != std::string::npos);
     CHECK(fs::exists(dir + "/0_scene.tilt_deg=0/report.json"));
 }
 
