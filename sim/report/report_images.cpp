@@ -133,14 +133,25 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
     // The Pareto view: speedup against memory overhead, one line per method
     // and combination of the string-valued sweep values (scene, kind, ...),
     // its points in sweep order (e.g. a cluster size sweep).
+    std::map<std::string, std::set<std::string>> strings;  // string-valued axes and their values
+    for (const RunResult& r : runs)
+        for (const auto& [k, v] : r.sweep_values.items())
+            if (v.is_string()) strings[k].insert(v.get<std::string>());
     std::map<std::string, PlotSeries> pareto;
     for (const std::string& method : others) {
         for (const RunResult& r : runs) {
             const double s = r.speedup(method), o = r.memory_overhead_percent(method);
             if (!(s > 0) || std::isnan(o)) continue;
-            std::string key = method;
-            for (const auto& [k, v] : r.sweep_values.items())
-                if (v.is_string()) key += ", " + k + "=" + v.get<std::string>();
+            std::string key = one ? "" : method;
+            for (const auto& [k, v] : r.sweep_values.items()) {
+                if (!v.is_string() || strings[k].size() < 2) continue;
+                // "scene.name" reads "scene", "cluster.strategy" reads "strategy".
+                const std::size_t dot = k.rfind('.');
+                const std::string name = k.ends_with(".name") ? k.substr(0, dot)
+                                         : dot == std::string::npos ? k : k.substr(dot + 1);
+                key += (key.empty() ? "" : ", ") + name + "=" + v.get<std::string>();
+            }
+            if (key.empty()) key = method;
             PlotSeries& ps = pareto[key];
             ps.name = key;
             ps.x.push_back(o);
