@@ -45,7 +45,7 @@ BreakEvenAxis read_axis(const JsonReader& r) {
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
     const JsonReader r(config, file);
     r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
-                  "cost", "memory", "workload", "output", "calibrate", "break_even"});
+                  "cluster", "cost", "memory", "workload", "output", "calibrate", "break_even"});
     RunConfig c;
     c.file = file;
     c.name = r.string("name", std::filesystem::path(file).stem().string());
@@ -94,6 +94,17 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         c.build.triangle_blas = read_build(b, c.build.triangle_blas);
         c.build.triangle_blas.max_leaf_size =
             static_cast<int>(b.integer("triangle_leaf_size", 4, 1, 16));
+    }
+    if (r.has("cluster")) {  // read by the cluster method only
+        const JsonReader k = r.child("cluster");
+        k.allow_only({"strategy", "size", "frame"});
+        c.build.cluster.strategy = k.choice("strategy", "orientation", {"strand", "orientation"}) == "strand"
+                                       ? ClusterStrategy::Strand
+                                       : ClusterStrategy::Orientation;
+        c.build.cluster.size = static_cast<int>(k.integer("size", 16, 1, 65536));
+        c.build.cluster.frame = k.choice("frame", "best", {"best", "principal"}) == "principal"
+                                    ? ClusterFrame::Principal
+                                    : ClusterFrame::Best;
     }
     if (r.has("traversal")) {
         const JsonReader t = r.child("traversal");

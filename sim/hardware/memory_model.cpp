@@ -18,6 +18,7 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
     b.lss_prims = static_cast<double>(c.lss_prims) * m.lss_prim_bytes;
     b.oriented_children = static_cast<double>(c.oriented_children) * m.obb_child_bytes;
     b.leaf_obbs = static_cast<double>(c.leaf_obbs) * m.leaf_obb_bytes;
+    b.blas_headers = static_cast<double>(c.blases) * m.blas_bytes;
     b.common = static_cast<double>(primitives) *
                    m.primitive_data_bytes[static_cast<std::size_t>(kind)] +
                static_cast<double>(mesh_vertices) * m.mesh_vertex_bytes +
@@ -33,7 +34,7 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
     const JsonReader bytes = r.child("bytes");
-    bytes.allow_only({"node_w2", "node_w4", "node_w8", "custom_prim", "triangle", "instance",
+    bytes.allow_only({"node_w2", "node_w4", "node_w8", "custom_prim", "triangle", "instance", "blas",
                       "lss_prim", "obb_child", "leaf_obb", "cylinder_data", "capsule_data", "link_data", "phantom_data", "mesh_vertex",
                       "mesh_triangle"});
     const auto read = [&](const char* key, double& out) {
@@ -51,6 +52,7 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
     read("lss_prim", m.lss_prim_bytes);
     read("obb_child", m.obb_child_bytes);
     read("leaf_obb", m.leaf_obb_bytes);
+    read("blas", m.blas_bytes);
     read("cylinder_data", m.primitive_data_bytes[0]);
     read("capsule_data", m.primitive_data_bytes[1]);
     read("link_data", m.primitive_data_bytes[2]);

@@ -22,6 +22,7 @@ struct MemoryModel {
     double lss_prim_bytes = 32;     // per linear swept sphere in a BLAS (lss)
     double obb_child_bytes = 24;    // extra per child box with its own 3x4 transform (obb-nodes)
     double leaf_obb_bytes = 21;     // per primitive OBB read by a software leaf test (leaf-obb)
+    double blas_bytes = 192;        // per BLAS: header and alignment padding of its buffer
     std::array<double, 4> primitive_data_bytes{32, 32, 32, 64};  // per PrimitiveKind
     double mesh_vertex_bytes = 12, mesh_triangle_bytes = 12;     // shared mesh data
     std::uint64_t instance_limit = 1u << 24;
@@ -42,16 +43,18 @@ struct StructureCounts {
     std::uint64_t lss_prims = 0;          // hardware LSS primitives
     std::uint64_t oriented_children = 0;  // child boxes with their own transform
     std::uint64_t leaf_obbs = 0;          // per-primitive OBBs for a software leaf test
+    std::uint64_t blases = 0;  // distinct BLASes (each has a header and an aligned buffer)
     int width = 4;
 };
 
 struct MemoryBreakdown {
     double tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
     double lss_prims = 0, oriented_children = 0, leaf_obbs = 0;
+    double blas_headers = 0;
     double common = 0;  // primitive data + mesh, shared by every method
     [[nodiscard]] double acceleration() const {
         return tlas_nodes + blas_nodes + instances + custom_prims + triangles + lss_prims +
-               oriented_children + leaf_obbs;
+               oriented_children + leaf_obbs + blas_headers;
     }
     [[nodiscard]] double total() const { return acceleration() + common; }
 };

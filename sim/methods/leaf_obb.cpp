@@ -11,8 +11,8 @@
 // tested with the same float operations as the masquerade's unit-box test.
 // Memory: one OBB per primitive beside the BLAS (leaf_obb bytes).
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -76,7 +76,7 @@ MethodEntry leaf_obb_method() {
     return {{"leaf-obb",
              "ref's BLAS; each intersection program starts with a software OBB test (Embree curveNi)",
              {"custom_primitives"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<LeafObbMethod>>(
                     std::visit([&](const auto& prims) { return build_leaf_obb(prims, g, o); }, g.prims));

@@ -11,8 +11,8 @@
 // method reports n/a for them (an LSS polyline of a curve would give
 // different hits; not modelled). Memory: lss_prim bytes per primitive.
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 #include <stdexcept>
 
@@ -50,7 +50,7 @@ TwoLevelStructures build_lss(const std::vector<Prim>& prims, const Geometry& g, 
 MethodEntry lss_method() {
     return {{"lss", "capsules and links as linear swept spheres tested in the RT unit (Blackwell): no context switch",
              {"lss"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 if (const std::string why = lss_not_applicable(g); !why.empty())
                     throw std::invalid_argument("lss: " + why);

@@ -20,7 +20,7 @@
 #include "sim/execution/frame.h"
 #include "sim/hardware/leaf_programs.h"
 #include "sim/hardware/memory_model.h"
-#include "sim/methods/geometry.h"
+#include "sim/methods/common/geometry.h"
 
 #include <functional>
 #include <memory>
@@ -30,11 +30,22 @@
 
 namespace rtc {
 
+// How `cluster` groups primitives and frames each group (config block
+// "cluster", configs/README.md; cluster_groups.h says what each choice costs).
+enum class ClusterStrategy : std::uint8_t { Strand, Orientation };
+enum class ClusterFrame : std::uint8_t { Best, Principal };
+struct ClusterOptions {
+    ClusterStrategy strategy = ClusterStrategy::Orientation;
+    int size = 16;  // primitives per cluster (at most; see cluster_groups.h)
+    ClusterFrame frame = ClusterFrame::Best;
+};
+
 struct MethodOptions {
     BuildOptions custom_blas;     // leaf size 1: one box per custom primitive
     BuildOptions triangle_blas;   // triangles may share leaves
     BuildOptions tlas;            // leaf size 1: one box per instance
     ObbVariant obb = ObbVariant::Paper;
+    ClusterOptions cluster;       // only the cluster method reads it
 };
 
 struct MethodInfo {
@@ -65,7 +76,8 @@ public:
 
 struct MethodEntry {
     MethodInfo info;
-    std::function<std::uint64_t(const Geometry&)> instance_count;
+    // May depend on the options (a method that groups primitives into instances).
+    std::function<std::uint64_t(const Geometry&, const MethodOptions&)> instance_count;
     // Throws std::invalid_argument on a primitive whose bounds are not finite.
     std::function<std::unique_ptr<BuiltMethod>(const Geometry&, const MethodOptions&)> build;
     // Optional: why the method cannot represent this geometry (e.g. a

@@ -4,8 +4,8 @@
 // The hardware's instance transform + unit-box test is then an OBB test, and
 // the program gets the world-space ray and the instance's primitive index.
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -38,7 +38,7 @@ TwoLevelStructures build_obb(const std::vector<Prim>& prims, const Geometry& g, 
 MethodEntry obb_method() {
     return {{"obb", "one instance per primitive mapping a unit-box BLAS onto its OBB (the masquerade)",
              {"custom_primitives", "instance_transforms"}},
-            [](const Geometry& g) -> std::uint64_t {
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t {
                 return g.primitive_count() + (g.triangles.empty() ? 0 : 1);
             },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {

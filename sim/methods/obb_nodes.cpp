@@ -16,8 +16,8 @@
 // Memory: obb_child bytes extra per oriented child (Embree: a 3x4 affine
 // instead of an AABB).
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -40,7 +40,7 @@ MethodEntry obb_nodes_method() {
     return {{"obb-nodes",
              "BLAS with oriented nodes chosen by SAH (Woop et al. 2014, Embree hair BVH); per-child OBB tests in hardware",
              {"custom_primitives", "obb_nodes"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<ObbTreeMethod>>(build_obb_nodes(g, o));
             }};

@@ -14,8 +14,8 @@
 // "quantized_obb_nodes". Closest hits are identical to ref's.
 // Note: RDNA4 nodes are 8 wide; the method follows the config's BVH width.
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -36,7 +36,7 @@ MethodEntry obb_quantized_method() {
     return {{"obb-quantized",
              "ref's BLAS with one rotation per node from a table of 104 (AMD RDNA4 / GPURT), 12-bit child boxes",
              {"custom_primitives", "quantized_obb_nodes"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<ObbTreeMethod>>(build_obb_quantized(g, o));
             }};

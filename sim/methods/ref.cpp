@@ -4,8 +4,8 @@
 // program, which gets the object-space ray (bit-identical to the world ray:
 // the instance is the identity) and the primitive index.
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -35,7 +35,7 @@ TwoLevelStructures build_ref(const std::vector<Prim>& prims, const Geometry& g, 
 MethodEntry ref_method() {
     return {{"ref", "custom-primitive AABBs in one BLAS; a context switch per leaf box reached",
              {"custom_primitives"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<TwoLevelMethod<RefLeaf>>>(
                     std::visit([&](const auto& prims) { return build_ref(prims, g, o); }, g.prims));

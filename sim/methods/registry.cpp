@@ -14,7 +14,8 @@ namespace rtc {
     X(split)                      \
     X(lss)                        \
     X(obb_nodes)                  \
-    X(obb_quantized)
+    X(obb_quantized)              \
+    X(cluster)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();
 RTCSIM_BUILTIN_METHODS(RTCSIM_DECLARE)

@@ -16,8 +16,8 @@
 // box contains that part of the primitive, the pieces cover it, and the
 // program tests the whole primitive. Memory: one custom_prim per reference.
 #include "core/parallel.h"
-#include "sim/methods/method_adapter.h"
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -153,7 +153,7 @@ MethodEntry split_method() {
     return {{"split",
              "ref with long primitives split into up to 8 AABB references along their length (pbrt-v4, OptiX)",
              {"custom_primitives"}},
-            [](const Geometry& g) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<TwoLevelMethod<SplitLeaf>>>(
                     std::visit([&](const auto& prims) { return build_split(prims, g, o); }, g.prims));

@@ -98,7 +98,8 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
                          {"instances", mem.instances},       {"custom_prims", mem.custom_prims},
                          {"triangles", mem.triangles},       {"lss_prims", mem.lss_prims},
                          {"oriented_children", mem.oriented_children},
-                         {"leaf_obbs", mem.leaf_obbs},       {"acceleration", mem.acceleration()},
+                         {"leaf_obbs", mem.leaf_obbs},       {"blas_headers", mem.blas_headers},
+                         {"acceleration", mem.acceleration()},
                          {"common", mem.common},             {"total", mem.total()}};
     j["structures"] = {{"width", m.structures.width},
                        {"tlas_nodes", m.structures.tlas_nodes},
@@ -108,7 +109,8 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
                        {"triangles", m.structures.triangles},
                        {"lss_prims", m.structures.lss_prims},
                        {"oriented_children", m.structures.oriented_children},
-                       {"leaf_obbs", m.structures.leaf_obbs}};
+                       {"leaf_obbs", m.structures.leaf_obbs},
+                       {"blases", m.structures.blases}};
     j["simulator"] = {{"build_seconds", m.build_seconds},
                       {"trace_seconds", m.frame.trace_seconds},
                       {"rays_per_second", m.frame.trace_seconds > 0

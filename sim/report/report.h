@@ -33,8 +33,9 @@ void write_images(const RunResult& run, const std::string& dir);
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
 
 // For each numeric sweep axis: speedup of every non-ref method against it, one
-// line per value of the other axes (e.g. speedup vs tilt, one line per N).
-// Returns the files written.
+// line per value of the other axes (e.g. speedup vs tilt, one line per N);
+// speedup against memory overhead (speedup_vs_memory.svg, the Pareto view);
+// speedup against the AABB/OBB area ratio. Returns the files written.
 std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs,
                                            const std::string& dir);
 

@@ -6,6 +6,7 @@
 #include "sim/report/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -152,6 +153,44 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
         for (char& ch : file) if (ch == '/' ) ch = '_';
         write_text_file(path_in(dir, file), line_plot_svg(plot));
         written.push_back(file);
+    }
+    // The Pareto view: speedup against memory overhead, one line per method
+    // and combination of the string-valued sweep values (scene, kind, ...),
+    // its points in sweep order (e.g. a cluster size sweep).
+    std::map<std::string, std::set<std::string>> strings;  // string-valued axes and their values
+    for (const RunResult& r : runs)
+        for (const auto& [k, v] : r.sweep_values.items())
+            if (v.is_string()) strings[k].insert(v.get<std::string>());
+    std::map<std::string, PlotSeries> pareto;
+    for (const std::string& method : others) {
+        for (const RunResult& r : runs) {
+            const double s = r.speedup(method), o = r.memory_overhead_percent(method);
+            if (!(s > 0) || std::isnan(o)) continue;
+            std::string key = one ? "" : method;
+            for (const auto& [k, v] : r.sweep_values.items()) {
+                if (!v.is_string() || strings[k].size() < 2) continue;
+                // "scene.name" reads "scene", "cluster.strategy" reads "strategy".
+                const std::size_t dot = k.rfind('.');
+                const std::string name = k.ends_with(".name") ? k.substr(0, dot)
+                                         : dot == std::string::npos ? k : k.substr(dot + 1);
+                key += (key.empty() ? "" : ", ") + name + "=" + v.get<std::string>();
+            }
+            if (key.empty()) key = method;
+            PlotSeries& ps = pareto[key];
+            ps.name = key;
+            ps.x.push_back(o);
+            ps.y.push_back(s);
+        }
+    }
+    if (std::any_of(pareto.begin(), pareto.end(), [](const auto& p) { return p.second.x.size() > 1; })) {
+        LinePlot plot;
+        plot.axes.title = "speedup over " + bname + " vs memory overhead (Pareto)";
+        plot.axes.x_label = "total memory over " + bname + " (%)";
+        plot.axes.y_label = "speedup (" + bname + " cycles / method cycles)";
+        plot.axes.height = 480;
+        for (auto& [k, s] : pareto) plot.series.push_back(std::move(s));
+        write_text_file(path_in(dir, "speedup_vs_memory.svg"), line_plot_svg(plot));
+        written.push_back("speedup_vs_memory.svg");
     }
     // Speedup against the surface-area ratio over every run (figure 9's metric).
     for (const std::string& method : others) {

@@ -106,7 +106,9 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
             r.methods.push_back(std::move(m));
             continue;
         }
-        m.instances = method.instance_count(geometry);
+        MethodOptions build = c.build;
+        build.custom_blas.threads = build.triangle_blas.threads = build.tlas.threads = ctx.threads;
+        m.instances = method.instance_count(geometry, build);
         if (m.instances > r.memory.instance_limit) {
             m.runnable = false;
             m.reason = std::to_string(m.instances) + " instances exceed the instance limit of " +
@@ -117,8 +119,6 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         const auto t_build = std::chrono::steady_clock::now();
         if (!ctx.quiet) std::fprintf(stderr, "build %s: %llu instances...", name.c_str(),
                                      static_cast<unsigned long long>(m.instances));
-        MethodOptions build = c.build;
-        build.custom_blas.threads = build.triangle_blas.threads = build.tlas.threads = ctx.threads;
         const std::unique_ptr<BuiltMethod> built = method.build(geometry, build);
         m.build_seconds = seconds_since(t_build);
         if (!ctx.quiet) std::fprintf(stderr, " done in %.2f s\n", m.build_seconds);

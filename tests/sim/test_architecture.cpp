@@ -48,8 +48,8 @@ TEST_CASE("architecture: every sim/ folder includes only the folders below it") 
         CAPTURE(folder);
         REQUIRE_MESSAGE(kAllowed.count(folder), "new sim/ folder: add it to kAllowed and docs/architecture.md");
         seen.insert(folder);
-        for (const auto& f : fs::directory_iterator(dir.path())) {
-            if (!is_source(f.path())) continue;
+        for (const auto& f : fs::recursive_directory_iterator(dir.path())) {  // sub-folders belong to it
+            if (!f.is_regular_file() || !is_source(f.path())) continue;
             std::ifstream in(f.path());
             std::string line;
             int n = 0;

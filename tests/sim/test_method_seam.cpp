@@ -5,7 +5,7 @@
 // byte for byte), and the reports must carry its speedup against the baseline.
 #include "sim/app/simulate_main.h"
 #include "sim/hardware/cost_model.h"
-#include "sim/methods/method_adapter.h"
+#include "sim/methods/common/method_adapter.h"
 #include "sim/util/json_file.h"
 
 #include <doctest/doctest.h>
@@ -44,7 +44,7 @@ struct BruteForce {
 void register_brute_force_once() {
     if (find_method("test-brute")) return;
     register_method({{"test-brute", "test only: every primitive is a candidate (no BVH)", {"custom_primitives"}},
-                     [](const Geometry&) -> std::uint64_t { return 0; },
+                     [](const Geometry&, const MethodOptions&) -> std::uint64_t { return 0; },
                      [](const Geometry& g, const MethodOptions&) -> std::unique_ptr<BuiltMethod> {
                          return std::make_unique<BuiltMethodOf<BruteForce>>(BruteForce::Structures{
                              static_cast<std::uint32_t>(g.primitive_count()),

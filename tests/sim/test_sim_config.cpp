@@ -113,5 +113,11 @@ TEST_CASE("memory model: presets and pricing") {
     CHECK(m.tlas_nodes == 0.0);
     CHECK(price_memory(c, dxr, PrimitiveKind::Capsule, 1000, 0, 0).tlas_nodes == 10 * dxr.node_bytes_w4);
     CHECK(m.common == 1000 * optix.primitive_data_bytes[1]);
+    // Every preset prices a BLAS (header + alignment), which cluster has one of per group.
+    CHECK(optix.blas_bytes == 192);
+    CHECK(dxr.blas_bytes == 256);
+    CHECK(load_memory_model(RTCSIM_SOURCE_DIR "/configs/hw/memory-optix-record.json").blas_bytes == 64);
+    c.blases = 10;
+    CHECK(price_memory(c, optix, PrimitiveKind::Capsule, 1000, 0, 0).blas_headers == 1920.0);
     CHECK(m.total() == doctest::Approx(m.acceleration() + m.common));
 }

@@ -101,6 +101,22 @@ TEST_CASE("simulate e2e: counts and report do not depend on the thread count") {
     CHECK(slurp(one + "/heat_cycles_ref.png") == slurp(two + "/heat_cycles_ref.png"));
 }
 
+TEST_CASE("simulate e2e: cluster of size 1 costs what obb costs, and finds ref's hits") {
+    const std::string dir = out_dir("cluster1");
+    REQUIRE(run(kTiny, dir, {"methods=[\"ref\",\"obb\",\"cluster\"]", "cluster={\"size\":1}",
+                             "output={\"images\":false,\"hits\":true}"}) == 0);
+    const nlohmann::json r = report(dir);
+    CHECK(r["methods"]["cluster"]["events"] == r["methods"]["obb"]["events"]);
+    CHECK(r["methods"]["cluster"]["memory_bytes"] == r["methods"]["obb"]["memory_bytes"]);
+    CHECK(r["speedup_over_ref"]["cluster"] == r["speedup_over_ref"]["obb"]);
+    CHECK(slurp(dir + "/hits_cluster.bin") == slurp(dir + "/hits_ref.bin"));
+    const std::string sixteen = out_dir("cluster16");
+    REQUIRE(run(kTiny, sixteen, {"methods=[\"ref\",\"cluster\"]", "cluster={\"size\":16}",
+                                 "output={\"images\":false,\"hits\":true}"}) == 0);
+    CHECK(report(sixteen)["methods"]["cluster"]["instances"] == 4);  // 60 / 16, rounded up
+    CHECK(slurp(sixteen + "/hits_cluster.bin") == slurp(sixteen + "/hits_ref.bin"));
+}
+
 TEST_CASE("simulate e2e: a sweep writes one row per point and a plot") {
     const std::string dir = out_dir("sweep");
     REQUIRE(run(kTiny, dir, {"sweep={\"scene.tilt_deg\":[0,45]}", "output={\"images\":false}",
@@ -109,6 +125,7 @@ TEST_CASE("simulate e2e: a sweep writes one row per point and a plot") {
     CHECK(csv.find("scene.tilt_deg=0") != std::string::npos);
     CHECK(csv.find("scene.tilt_deg=45") != std::string::npos);
     CHECK(fs::exists(dir + "/speedup_vs_scene.tilt_deg.svg"));
+    CHECK(slurp(dir + "/speedup_vs_memory.svg").find("memory overhead (Pareto)") != std::string::npos);
     CHECK(fs::exists(dir + "/0_scene.tilt_deg=0/report.json"));
 }
 
@@ -147,6 +164,10 @@ TEST_CASE("simulate e2e: bad input fails with one line naming the file and JSON 
     CHECK(error_of(kTiny, {"methods=[\"fast\"]"}).find(kTiny + ": /methods/0:") == 0);
     CHECK(error_of(kTiny, {"primitives.subdivision=3"}).find(kTiny + ": /primitives/subdivision:") == 0);
     CHECK(error_of(kTiny, {"bvh.width=5"}).find(kTiny + ": /bvh/width:") == 0);
+    CHECK(error_of(kTiny, {"cluster.size=0"}).find(kTiny + ": /cluster/size:") == 0);
+    CHECK(error_of(kTiny, {"cluster.strategy=\"random\""}).find(kTiny + ": /cluster/strategy:") == 0);
+    CHECK(error_of(kTiny, {"cluster.frame=\"pca\""}).find(kTiny + ": /cluster/frame:") == 0);
+    CHECK(error_of(kTiny, {"cluster.sise=4"}).find(kTiny + ": /cluster/sise: unknown key") == 0);
     CHECK(error_of(kTiny, {"cost=\"nope.json\""}).find("nope.json: cannot open") == 0);
     CHECK(error_of(kTiny, {"scene={\"type\":\"file\",\"curves\":{\"path\":\"missing.hair\"}}"})
               .find("missing.hair") != std::string::npos);

@@ -1,4 +1,4 @@
-#include "sim/methods/geometry.h"
+#include "sim/methods/common/geometry.h"
 
 #include "intersectors/capsule.h"
 #include "intersectors/cylinder.h"
@@ -15,6 +15,9 @@ Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision) 
     Geometry g;
     g.kind = kind;
     g.prims = to_primitives(scene.strands, kind, subdivision);
+    const std::vector<std::uint32_t> strand = primitive_strands(scene.strands, kind, subdivision);
+    for (std::size_t i = 0; i < strand.size(); ++i)
+        if (i == 0 || strand[i] != strand[i - 1]) g.strand_first.push_back(static_cast<std::uint32_t>(i));
     g.triangles.reserve(scene.mesh.triangles.size());
     for (const auto& t : scene.mesh.triangles)
         g.triangles.push_back({scene.mesh.vertices[t[0]], scene.mesh.vertices[t[1]],

@@ -18,6 +18,9 @@ struct Geometry {
     PrimitiveKind kind = PrimitiveKind::Capsule;
     PrimitiveArray prims;
     std::vector<Triangle> triangles;
+    // Where each strand's primitives start (ascending, from 0); empty when
+    // unknown (then all primitives count as one strand).
+    std::vector<std::uint32_t> strand_first;
 
     [[nodiscard]] std::size_t primitive_count() const;
 };

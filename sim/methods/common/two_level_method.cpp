@@ -1,4 +1,4 @@
-#include "sim/methods/two_level_method.h"
+#include "sim/methods/common/two_level_method.h"
 
 namespace rtc {
 
@@ -28,6 +28,7 @@ StructureCounts count_two_level(const TwoLevelStructures& s) {
     c.width = s.accel.tlas.width;
     c.tlas_nodes = s.accel.tlas.node_count();
     c.instances = s.accel.instances.size();
+    c.blases = s.accel.blases.size();
     for (std::size_t b = 0; b < s.accel.blases.size(); ++b) {
         const Bvh& blas = s.accel.blases[b];
         c.blas_nodes += blas.node_count();

@@ -1,0 +1,206 @@
+#!/usr/bin/env python3
+"""Collects the report.json files of a cluster-size sweep into the Markdown
+tables of docs/beyond.md (section "cluster: the paper's future work").
+
+usage: scripts/make_beyond.py [--svg PLOT.svg] RUN_DIR [RUN_DIR ...] > tables.md
+Each RUN_DIR is the output of
+  build/simulate configs/runs/cluster_sweep.json --out RUN_DIR
+(or configs/runs/cluster_fur20m.json). Memory is repriced from the reported
+structure counts under every preset in configs/hw/memory-*.json. Cluster
+size 1 is the per-primitive masquerade (obb), count for count. With --svg,
+also writes the Pareto plot of every model: speedup (first cost preset)
+against memory overhead (OptiX 7), one line per model and strategy, the
+points labelled by cluster size. Only the Python standard library is used.
+"""
+import glob
+import json
+import math
+import os
+import sys
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+PRESETS = ["memory-optix7", "memory-dxr", "memory-optix-record"]
+MIB = 1024.0 * 1024.0
+
+
+def load_presets():
+    out = {}
+    for name in PRESETS:
+        with open(os.path.join(ROOT, "configs", "hw", name + ".json")) as f:
+            b = json.load(f)["bytes"]
+        out[name] = {k: v["value"] for k, v in b.items()}
+    return out
+
+
+def reports(directory):
+    paths = glob.glob(os.path.join(directory, "*", "report.json")) or \
+        glob.glob(os.path.join(directory, "report.json"))
+    def order(p):
+        head = os.path.basename(os.path.dirname(p)).split("_")[0]
+        return int(head) if head.isdigit() else 0
+    out = []
+    for path in sorted(paths, key=order):
+        with open(path) as f:
+            out.append(json.load(f))
+    return out
+
+
+def total_bytes(method, preset):
+    """Acceleration structures under `preset` plus the shared data."""
+    s = method["structures"]
+    node = preset["node_w%d" % s["width"]]
+    accel = (s["tlas_nodes"] + s["blas_nodes"]) * node + s["instances"] * preset["instance"] + \
+        s["custom_prims"] * preset["custom_prim"] + s["triangles"] * preset["triangle"] + \
+        s.get("blases", 0) * preset["blas"]
+    return accel + method["memory_bytes"]["common"]
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "n/a"
+    return ("%." + str(digits) + "g") % x
+
+
+def rows(runs, presets):
+    out = []
+    for r in runs:
+        sp = r.get("sweep_point", {})
+        ref, cl = r["methods"]["ref"], r["methods"]["cluster"]
+        cfg = r["config"].get("cluster", {})
+        row = {
+            "scene": sp.get("scene.name") or r["config"]["scene"].get("name") or r["name"],
+            "prims": r["scene"]["primitives"],
+            "strategy": sp.get("cluster.strategy", cfg.get("strategy", "orientation")),
+            "size": sp.get("cluster.size", cfg.get("size", 16)),
+            "instances": cl["instances"],
+            "runnable": cl["runnable"],
+        }
+        if not cl["runnable"]:
+            row["reason"] = cl["reason"]
+            out.append(row)
+            continue
+        presets_cyc = list(cl["cycles"].keys())
+        row["cyc"] = cl["cycles"][presets_cyc[0]]["per_ray"]
+        row["ref_cyc"] = ref["cycles"][presets_cyc[0]]["per_ray"]
+        row["is"] = cl["events"]["is_call"]["per_ray"]
+        row["ref_is"] = ref["events"]["is_call"]["per_ray"]
+        row["inst"] = cl["events"]["instance_transform"]["per_ray"]
+        row["speedup"] = [r["speedup_over_ref"]["cluster"].get(p) for p in presets_cyc]
+        row["ref_mem"] = {p: total_bytes(ref, presets[p]) for p in presets}
+        row["mem"] = {p: total_bytes(cl, presets[p]) for p in presets}
+        row["build"] = cl["simulator"]["build_seconds"]
+        row["ref_build"] = ref["simulator"]["build_seconds"]
+        row["rays"] = cl["rays"]
+        out.append(row)
+    return out
+
+
+def table(rs):
+    lines = ["| model | strategy | size | instances | cycles/ray | IS calls/ray | instance transforms/ray "
+             "| speedup (calibrated / guess) | memory, OptiX 7 | overhead OptiX 7 / DXR / records | build (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rs:
+        head = "| %s | %s | %d | %s |" % (r["scene"], r["strategy"], r["size"], format(r["instances"], ","))
+        if not r["runnable"]:
+            lines.append(head + " n/a | | | | | %s | |" % r["reason"])
+            continue
+        over = [100.0 * (r["mem"][p] / r["ref_mem"][p] - 1.0) for p in PRESETS]
+        lines.append(head + " %s | %s | %s | %s | %.1f MiB | %s | %.1f |" % (
+            fmt(r["cyc"], 4), fmt(r["is"]), fmt(r["inst"]),
+            " / ".join(fmt(s) + "x" for s in r["speedup"]),
+            r["mem"]["memory-optix7"] / MIB, " / ".join("%+.0f%%" % o for o in over), r["build"]))
+    return "\n".join(lines)
+
+
+def verdicts(rs):
+    """Per model: the masquerade (size 1) and the best cluster size within +50 % memory (OptiX 7)."""
+    lines = ["| model | obb (= size 1) speedup, overhead | best within +50 % memory (OptiX 7) | share of obb's speedup |",
+             "|---|---|---|---|"]
+    for scene in dict.fromkeys(r["scene"] for r in rs):
+        mine = [r for r in rs if r["scene"] == scene and r["runnable"]]
+        one = [r for r in mine if r["size"] == 1]
+        within = [r for r in mine if 100.0 * (r["mem"]["memory-optix7"] / r["ref_mem"]["memory-optix7"] - 1) <= 50.0
+                  and r["size"] > 1]
+        if not within:
+            continue
+        best = max(within, key=lambda r: r["speedup"][0] or 0)
+        over = overhead(best)
+        if one:
+            o = one[0]
+            oover = 100.0 * (o["mem"]["memory-optix7"] / o["ref_mem"]["memory-optix7"] - 1)
+            obb = "%sx, %+.0f%%" % (fmt(o["speedup"][0]), oover)
+            share = "%.0f %%" % (100.0 * best["speedup"][0] / o["speedup"][0])
+        else:
+            obb, share = "n/a (over the instance limit)", "-"
+        lines.append("| %s | %s | %s, size %d, %sx at %+.0f%% | %s |" % (
+            scene, obb, best["strategy"], best["size"], fmt(best["speedup"][0]), over, share))
+    return "\n".join(lines)
+
+
+def overhead(r, preset="memory-optix7"):
+    return 100.0 * (r["mem"][preset] / r["ref_mem"][preset] - 1.0)
+
+
+def pareto_svg(rs, path):
+    """Speedup against memory overhead, one polyline per (model, strategy)."""
+    series = {}
+    for r in rs:
+        if r["runnable"] and r["speedup"][0]:
+            series.setdefault((r["scene"], r["strategy"]), []).append((overhead(r), r["speedup"][0], r["size"]))
+    W, H, L, R, T, B = 760, 520, 70, 250, 40, 60
+    xmax = max(x for pts in series.values() for x, _, _ in pts)
+    xmax = 50.0 * math.ceil(xmax / 50.0)
+    ymax = 0.5 * math.ceil(max(y for pts in series.values() for _, y, _ in pts) / 0.5)
+    X = lambda x: L + (W - L - R) * x / xmax
+    Y = lambda y: H - B - (H - T - B) * y / ymax
+    colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"]
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="12">' % (W, H),
+           '<rect width="100%" height="100%" fill="white"/>',
+           '<text x="%d" y="22" font-size="15">cluster: speedup over ref vs memory overhead (labels: cluster size; 1 = obb)</text>' % L]
+    for i in range(int(xmax / 50) + 1):
+        x = X(50.0 * i)
+        out.append('<line x1="%.1f" y1="%d" x2="%.1f" y2="%d" stroke="#ddd"/>' % (x, T, x, H - B))
+        out.append('<text x="%.1f" y="%d" text-anchor="middle">%d</text>' % (x, H - B + 16, 50 * i))
+    for i in range(int(ymax / 0.5) + 1):
+        y = Y(0.5 * i)
+        out.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#ddd"/>' % (L, y, W - R, y))
+        out.append('<text x="%d" y="%.1f" text-anchor="end">%.1f</text>' % (L - 6, y + 4, 0.5 * i))
+    out.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#888" stroke-dasharray="4 3"/>' % (L, Y(1), W - R, Y(1)))
+    out.append('<text x="%d" y="%d" text-anchor="middle">total memory over ref (%%), OptiX 7 preset</text>' % ((L + W - R) // 2, H - 18))
+    out.append('<text transform="translate(18 %d) rotate(-90)" text-anchor="middle">speedup over ref (turing-calibrated)</text>' % ((T + H - B) // 2))
+    for n, ((scene, strategy), pts) in enumerate(sorted(series.items())):
+        c = colours[n % len(colours)]
+        dash = '' if strategy == "orientation" else ' stroke-dasharray="5 3"'
+        out.append('<polyline fill="none" stroke="%s" stroke-width="1.6"%s points="%s"/>' % (
+            c, dash, " ".join("%.1f,%.1f" % (X(x), Y(y)) for x, y, _ in pts)))
+        for x, y, k in pts:
+            out.append('<circle cx="%.1f" cy="%.1f" r="3" fill="%s"/>' % (X(x), Y(y), c))
+            out.append('<text x="%.1f" y="%.1f" font-size="9" fill="%s">%d</text>' % (X(x) + 4, Y(y) - 4, c, k))
+        ly = T + 10 + 18 * n
+        out.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="2"%s/>' % (W - R + 12, ly, W - R + 36, ly, c, dash))
+        out.append('<text x="%d" y="%d">%s, %s</text>' % (W - R + 42, ly + 4, scene, strategy))
+    out.append('</svg>')
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+def main():
+    args = sys.argv[1:]
+    svg = None
+    if len(args) >= 2 and args[0] == "--svg":
+        svg, args = args[1], args[2:]
+    if not args:
+        sys.exit(__doc__)
+    presets = load_presets()
+    rs = []
+    for d in args:
+        rs += rows(reports(d), presets)
+    print(table(rs))
+    print()
+    print(verdicts(rs))
+    if svg:
+        pareto_svg(rs, svg)
+
+
+if __name__ == "__main__":
+    main()
