@@ -8,7 +8,7 @@
 // primitive kind, entered through one virtual call per frame, never per ray.
 //
 // Adding a method: write sim/methods/<name>.cpp (see ref.cpp for the pattern
-// and method_adapter.h for the template that compiles its ray path) and add
+// and common/method_adapter.h for the template that compiles its ray path) and add
 // one line to the list in registry.cpp. Code outside the tree (tests, a
 // researcher's experiment) can add one at run time with register_method().
 #pragma once
