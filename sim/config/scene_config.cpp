@@ -3,10 +3,10 @@
 // own std::invalid_argument checks never fire on config input.
 #include "sim/config/scene_config.h"
 
-#include "scenes/bundle.h"
-#include "scenes/follow_hairs.h"
-#include "scenes/hair_gen.h"
-#include "scenes/loaders.h"
+#include "scenes/generators/bundle.h"
+#include "scenes/generators/follow_hairs.h"
+#include "scenes/generators/hair_gen.h"
+#include "scenes/loaders/loaders.h"
 
 #include <cmath>
 #include <limits>

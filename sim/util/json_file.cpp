@@ -1,7 +1,7 @@
 #include "sim/util/json_file.h"
 
 #include "core/input_error.h"
-#include "scenes/file_bytes.h"
+#include "scenes/loaders/file_bytes.h"
 
 #include <fstream>
 #include <sstream>

@@ -4,7 +4,7 @@
 #include "sim/workload/ray_file.h"
 
 #include "core/input_error.h"
-#include "scenes/file_bytes.h"
+#include "scenes/loaders/file_bytes.h"
 
 #include <bit>
 #include <cerrno>

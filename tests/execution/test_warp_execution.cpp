@@ -2,7 +2,7 @@
 // count exactly what the per-ray model counts and hit the same primitives;
 // the wave records re-price to the figures computed while tracing; effective
 // counts reproduce the cycles linearly; nothing depends on the thread count.
-#include "scenes/bundle.h"
+#include "scenes/generators/bundle.h"
 #include "sim/hardware/warp_trace.h"
 #include "sim/methods/method.h"
 #include "sim/workload/camera.h"

@@ -5,7 +5,7 @@
 // are the files in tests/fixtures/bad.
 #include "core/input_error.h"
 #include "scenes/export.h"
-#include "scenes/loaders.h"
+#include "scenes/loaders/loaders.h"
 
 #include <doctest/doctest.h>
 

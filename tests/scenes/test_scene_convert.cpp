@@ -2,7 +2,7 @@
 // phantom curves (end handling, subdivision), strand indices, bad factors.
 #include "core/input_error.h"
 #include "scenes/convert.h"
-#include "scenes/random.h"
+#include "scenes/generators/random.h"
 
 #include <doctest/doctest.h>
 

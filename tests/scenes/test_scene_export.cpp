@@ -1,9 +1,9 @@
 // Export then re-import gives the same strands, bit for bit; and the scene
 // statistics on a hand-computable scene.
-#include "scenes/bundle.h"
+#include "scenes/generators/bundle.h"
 #include "scenes/export.h"
-#include "scenes/hair_gen.h"
-#include "scenes/loaders.h"
+#include "scenes/generators/hair_gen.h"
+#include "scenes/loaders/loaders.h"
 #include "scenes/stats.h"
 
 #include "shared_data.h"

@@ -1,8 +1,8 @@
 // The synthetic bundle, procedural hair, follow hairs and the sphere mesh.
-#include "scenes/bundle.h"
-#include "scenes/follow_hairs.h"
-#include "scenes/hair_gen.h"
-#include "scenes/sphere_mesh.h"
+#include "scenes/generators/bundle.h"
+#include "scenes/generators/follow_hairs.h"
+#include "scenes/generators/hair_gen.h"
+#include "scenes/generators/sphere_mesh.h"
 #include "scenes/stats.h"
 
 #include <doctest/doctest.h>

@@ -5,7 +5,7 @@
 // coordinates too large for float boxes. Each must be one InputError naming
 // the file and where, thrown before any large allocation.
 #include "core/input_error.h"
-#include "scenes/loaders.h"
+#include "scenes/loaders/loaders.h"
 
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // The loaders against the real models in ../shared/data (counts from the data
 // README and the .SOURCE.txt files) and against tiny hand-made fixtures.
-#include "scenes/loaders.h"
+#include "scenes/loaders/loaders.h"
 #include "shared_data.h"
 
 #include <doctest/doctest.h>

@@ -4,9 +4,9 @@
 // the inverse mass, ignored here) with the offset at byte 12. Both may carry
 // further arrays (tangents, thickness, UVs) after the positions, so the file
 // must be at least, not exactly, as long as the positions need.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
 
 #include <cmath>
 

@@ -2,9 +2,9 @@
 // 128-byte header, then the arrays named by the flags, in flag order. The
 // expected file size follows from the header, so any disagreement between the
 // counts and the size is caught before reading a single point.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
 
 namespace rtc {
 

@@ -4,10 +4,10 @@
 // indices) and follows `mtllib` to any path, so the text is checked here
 // first and tinyobjloader only ever sees the statements the simulator uses,
 // in a canonical form (see clean_obj). Errors name the file and line.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
-#include "scenes/text_lines.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
+#include "scenes/loaders/text_lines.h"
 
 #include <tiny_obj_loader.h>
 

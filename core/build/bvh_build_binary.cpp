@@ -6,9 +6,9 @@
 // tasks, each into its own slice of the node array. Every reduction is folded
 // in primitive order, so the tree (down to the sign of zero in a box) is the
 // same for any thread count, and the same as the plain serial algorithm.
-#include "core/bvh_build_binary.h"
-#include "core/bvh_build_refs.h"
-#include "core/bvh_build_sah.h"
+#include "core/build/bvh_build_binary.h"
+#include "core/build/bvh_build_refs.h"
+#include "core/build/bvh_build_sah.h"
 #include "core/parallel.h"
 
 #include <algorithm>

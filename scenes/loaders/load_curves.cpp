@@ -1,5 +1,5 @@
 // Picking a curve loader by name or by file extension.
-#include "scenes/loaders.h"
+#include "scenes/loaders/loaders.h"
 
 #include "core/input_error.h"
 

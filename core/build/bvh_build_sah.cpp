@@ -1,5 +1,5 @@
 // The binned SAH sweep (see core/bvh_build_sah.h).
-#include "core/bvh_build_sah.h"
+#include "core/build/bvh_build_sah.h"
 
 namespace rtc::bvh_detail {
 namespace {

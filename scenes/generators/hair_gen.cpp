@@ -1,8 +1,8 @@
 // Procedural hair (see hair_gen.h).
-#include "scenes/hair_gen.h"
+#include "scenes/generators/hair_gen.h"
 
-#include "scenes/random.h"
-#include "scenes/sphere_mesh.h"
+#include "scenes/generators/random.h"
+#include "scenes/generators/sphere_mesh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Whole-file reading shared by every loader (see file_bytes.h).
-#include "scenes/file_bytes.h"
+#include "scenes/loaders/file_bytes.h"
 
 #include <fstream>
 

@@ -1,5 +1,5 @@
 // UV sphere mesh (see sphere_mesh.h).
-#include "scenes/sphere_mesh.h"
+#include "scenes/generators/sphere_mesh.h"
 
 #include <cmath>
 #include <numbers>

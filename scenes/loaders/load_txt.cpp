@@ -2,10 +2,10 @@
 // export.h writes): one "x y z r" line per point, one or more blank lines
 // between strands, '#' starts a comment. A line holding only a comment does
 // not separate strands, so files can be annotated freely.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
-#include "scenes/text_lines.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
+#include "scenes/loaders/text_lines.h"
 
 namespace rtc {
 

@@ -4,7 +4,7 @@
 // usual collapse used for wide hardware BVHs, e.g. Ylitie et al. 2017 use a
 // cost-based variant).
 #include "core/bvh.h"
-#include "core/bvh_build_binary.h"
+#include "core/build/bvh_build_binary.h"
 #include "core/parallel.h"
 
 #include <algorithm>

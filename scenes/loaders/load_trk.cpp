@@ -3,9 +3,9 @@
 // (x, y, z, scalars...) float32, then the properties. n_count = 0 means
 // "unknown": read to the end of the file. Otherwise the file must hold
 // exactly n_count streamlines with nothing after them.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
 
 namespace rtc {
 

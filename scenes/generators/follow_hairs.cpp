@@ -1,7 +1,7 @@
 // Follow hairs (see follow_hairs.h).
-#include "scenes/follow_hairs.h"
+#include "scenes/generators/follow_hairs.h"
 
-#include "scenes/random.h"
+#include "scenes/generators/random.h"
 
 #include <cmath>
 #include <numbers>

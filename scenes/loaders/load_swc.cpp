@@ -5,10 +5,10 @@
 // other child starts a new chain at the branch node. So every parent-child
 // pair is exactly one segment and segments = nodes - roots. Nodes given with
 // no parent and no child (isolated somas) make no segment and are skipped.
-#include "scenes/file_bytes.h"
-#include "scenes/loaders.h"
-#include "scenes/strand_builder.h"
-#include "scenes/text_lines.h"
+#include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/loaders.h"
+#include "scenes/generators/strand_builder.h"
+#include "scenes/loaders/text_lines.h"
 
 #include <unordered_map>
 #include <utility>

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "core/bvh.h"
-#include "core/bvh_build_refs.h"
+#include "core/build/bvh_build_refs.h"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,7 @@
 // The synthetic bundle (see bundle.h).
-#include "scenes/bundle.h"
+#include "scenes/generators/bundle.h"
 
-#include "scenes/random.h"
+#include "scenes/generators/random.h"
 
 #include <cmath>
 #include <numbers>
