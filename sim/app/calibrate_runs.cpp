@@ -25,8 +25,8 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     for (RunResult* r : runs) {
         const std::string label = label_of(*r);
         const CalibrationTarget* target = find_target(desc, r->sweep_values, label);
-        MethodRun* ref = const_cast<MethodRun*>(r->baseline());
-        MethodRun* obb = const_cast<MethodRun*>(r->find(desc.method));
+        MethodRun* ref = r->baseline();
+        MethodRun* obb = r->find(desc.method);
         if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
             out.skipped.push_back(label);
             continue;

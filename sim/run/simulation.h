@@ -13,6 +13,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtc {
@@ -47,8 +48,12 @@ struct RunResult {
     double load_seconds = 0.0, convert_seconds = 0.0, total_seconds = 0.0;
 
     [[nodiscard]] const MethodRun* find(std::string_view method) const;
+    [[nodiscard]] MethodRun* find(std::string_view method) {
+        return const_cast<MethodRun*>(std::as_const(*this).find(method));
+    }
     // The baseline's run (config.baseline), or nullptr when it was not run.
     [[nodiscard]] const MethodRun* baseline() const { return find(config.baseline); }
+    [[nodiscard]] MethodRun* baseline() { return find(config.baseline); }
     // cycles(baseline) / cycles(method) under preset `preset`; 0 when not available.
     [[nodiscard]] double speedup(std::string_view method, std::size_t preset = 0) const;
     // Total memory of `method` over the baseline's, in percent; NaN when not available.
