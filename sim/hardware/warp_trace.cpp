@@ -54,68 +54,27 @@ std::size_t WarpTrace::memory_bytes() const {
            call_profile_.size() * 2 + profiles_.size() * (sizeof(RayCounts) + 24);
 }
 
-// The same arithmetic as price_wave (warp_pricing.cpp), straight from the
-// compact arrays: each profile is priced once per model, each lane from its
-// packed counts. Tests check that both agree.
+// Rebuilds each wave from the compact arrays and prices it with price_wave,
+// the function frames use while tracing, so both agree by construction.
 WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
-    std::vector<double> profile_price(profiles_.size());
-    for (std::size_t p = 0; p < profiles_.size(); ++p)
-        profile_price[p] = program_price(profiles_[static_cast<CallProfiles::Id>(p)], m);
-    double handoff_cost = 0.0;
-    for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] == EventUnit::HandOff) handoff_cost += m.cycles[e];
-    const double parallel = std::max(1.0, m.execution.rt_parallel_lanes);
     WarpTotals totals;
+    ProgramPrices prices;
+    WaveWork wave;
+    wave.profiles = &profiles_;
     const std::size_t nw = wave_first_lane_.size(), nl = lanes();
     for (std::size_t w = 0; w < nw; ++w) {
+        wave.clear();
         const std::size_t l0 = wave_first_lane_[w], l1 = w + 1 < nw ? wave_first_lane_[w + 1] : nl;
-        WavePrice p;
-        std::size_t shader_lane = l0, rt_lane = l0;
-        double rt_max = -1.0;
-        std::uint32_t rounds = 0;
+        const std::size_t c0 = lane_first_call_.empty() || l0 >= nl ? call_profile_.size() : lane_first_call_[l0];
         for (std::size_t l = l0; l < l1; ++l) {
-            double shader = 0.0, rt = 0.0;
-            for (std::size_t k = 0; k < kLaneEvents; ++k) {
-                const std::size_t e = kLaneEventIndex[k];
-                const double c = lane_counts_[l * kLaneEvents + k] * m.cycles[e];
-                if (kEventUnits[e] == EventUnit::Shader) shader += c;
-                else if (kEventUnits[e] == EventUnit::RtUnit) rt += c;
-            }
-            if (shader > p.shader) p.shader = shader, shader_lane = l;
-            p.rt_lane_sum += rt;
-            if (rt > rt_max) rt_max = rt, rt_lane = l;
-            rounds = std::max(rounds, calls_of(l));
+            RayCounts counts;  // the lane's own events; its calls' are in the profiles
+            for (std::size_t k = 0; k < kLaneEvents; ++k) counts.n[kLaneEventIndex[k]] = lane_counts_[l * kLaneEvents + k];
+            wave.lanes.push_back({counts, static_cast<std::uint32_t>(lane_first_call_[l] - c0), calls_of(l), 0});
         }
-        const bool slowest_lane_bounds = rt_max >= p.rt_lane_sum / parallel;
-        p.rt = slowest_lane_bounds ? rt_max : p.rt_lane_sum / parallel;
-        p.rounds = rounds;
-        p.handoff = rounds * handoff_cost;
-        for (std::uint32_t r = 0; r < rounds; ++r) {
-            double worst = -1.0;
-            CallProfiles::Id worst_profile = 0;
-            for (std::size_t l = l0; l < l1; ++l) {
-                if (r >= calls_of(l)) continue;
-                ++p.active_lane_rounds;
-                const CallProfiles::Id prof = call_profile_[lane_first_call_[l] + r];
-                if (profile_price[prof] > worst) worst = profile_price[prof], worst_profile = prof;
-            }
-            p.programs += worst;
-            if (eff) add_program_counts(*eff, profiles_[worst_profile]);
-        }
-        if (eff) {
-            for (std::size_t k = 0; k < kLaneEvents; ++k) {
-                const std::size_t e = kLaneEventIndex[k];
-                if (kEventUnits[e] == EventUnit::Shader) (*eff)[e] += lane_counts_[shader_lane * kLaneEvents + k];
-                if (kEventUnits[e] == EventUnit::HandOff) (*eff)[e] += rounds;
-                if (kEventUnits[e] != EventUnit::RtUnit) continue;
-                if (slowest_lane_bounds) {
-                    (*eff)[e] += lane_counts_[rt_lane * kLaneEvents + k];
-                } else {
-                    for (std::size_t l = l0; l < l1; ++l) (*eff)[e] += lane_counts_[l * kLaneEvents + k] / parallel;
-                }
-            }
-        }
-        totals.add(p, l1 - l0);
+        const std::size_t c1 = l1 < nl ? lane_first_call_[l1] : call_profile_.size();
+        wave.calls.assign(call_profile_.begin() + static_cast<std::ptrdiff_t>(c0),
+                          call_profile_.begin() + static_cast<std::ptrdiff_t>(c1));
+        totals.add(price_wave(wave, m, prices, eff), wave.lanes.size());
     }
     return totals;
 }
