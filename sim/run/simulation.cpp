@@ -207,6 +207,7 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
     r.effective_config = effective;
     r.repriced = true;
     r.provenance = nullptr;
+    r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
     std::vector<const CostModel*> warp_presets;
     const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
     if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
