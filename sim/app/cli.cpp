@@ -63,7 +63,8 @@ paths and presets:
   Every path in a config is relative to that config file. Presets are named by
   name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
   $RTCSIM_PRESET_DIR, else <bin>/../share/rtcsim/hw (installed), else the
-  source tree's configs/hw; or by a path ending in .json.
+  install prefix's share/rtcsim/hw, else the source tree's configs/hw; or by
+  a path (with a '/' or ending in .json). Details: configs/README.md.
 
 examples (from the source tree; installed configs are in <prefix>/share/rtcsim/runs):
   simulate configs/runs/quickstart.json
@@ -75,6 +76,7 @@ configs: configs/runs/*.json, keys documented in configs/README.md
 outputs: report.json (with provenance: version, commit, effective config,
          presets, threads, date, command line), summary.csv, summary.md,
          *.png heat maps, *.svg plots
+
 )" + methods_help();
 }
 
