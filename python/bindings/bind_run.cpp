@@ -34,7 +34,8 @@ WorkLimits limits_from(const py::dict& d) {
 
 PlanHandle make_plan(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
                      const py::dict& limits) {
-    return {std::make_shared<const RunPlan>(plan_runs(parse_json_text(text, file), file, sets, limits_from(limits)))};
+    return {std::make_shared<const RunPlan>(
+        plan_runs(parse_json_text(text, file), file, sets, limits_from(limits), sweep_key_order(text, sets)))};
 }
 
 // The outputs the CLI writes for one run: report.json and, unless the config

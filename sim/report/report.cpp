@@ -172,6 +172,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
                          {"total", run.total_seconds}};
+    if (!run.provenance.is_null()) j["provenance"] = run.provenance;  // set by sim/app (provenance.h)
     return j;
 }
 
