@@ -115,6 +115,7 @@ int run_all(const CliOptions& cli) {
                   << format_bytes(work.memory_bytes) << " of memory\n";
     }
     std::vector<RunResult> runs;
+    std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
     for (std::size_t i = 0; i < points.size(); ++i) {
         const std::string dir = points.size() == 1
                                     ? out
@@ -131,19 +132,18 @@ int run_all(const CliOptions& cli) {
         RunResult r = run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        if (parsed[i].output.arrays) (void)write_arrays(r, dir);
         (void)write_break_even_maps(r, dir);
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
+            m.frame.ray_counts = {};
+            m.frame.more_pixel_warp_cycles = {};
             m.frame.radiance = {};
         }
         runs.push_back(std::move(r));
-        const Table t = summary_table(runs);
-        write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
-        write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
-        const Table st = speedup_table(runs);
-        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
-        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
+        point_dirs.push_back(points.size() == 1 ? "" : std::filesystem::path(dir).filename().string());
+        write_sweep_outputs(runs, point_dirs, out);
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);
