@@ -86,7 +86,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
     const std::vector<std::string> axes = sweep_columns(runs);
     std::vector<std::string> header{"run", "point"};
     header.insert(header.end(), axes.begin(), axes.end());
-    for (const char* c : {"kind", "primitives", "aabb_over_obb_area", "method", "baseline", "cost_preset",
+    for (const char* c : {"primitive_kind", "primitive_count", "aabb_over_obb_area", "method", "baseline", "cost_preset",
                           "execution", "memory_preset", "instances", "rays", "cycles", "cycles_per_ray", "speedup",
                           "is_calls", "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent",
                           "reason"})

@@ -269,6 +269,8 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
         plot.axes.x_label = "total memory over " + bname + " (%)";
         plot.axes.y_label = "speedup (" + bname + " cycles / method cycles)";
         plot.axes.height = 480;
+        // Lines only along numeric axes (cluster size, tilt); categories have no order to follow.
+        plot.lines = std::all_of(axes.begin() + (axes.size() > 1 ? 1 : 0), axes.end(), [](const SweepAxis& a) { return a.numeric; });
         plot.series = std::move(pareto);
         write_text_file(path_in(dir, "speedup_vs_memory.svg"), line_plot_svg(plot));
         written.push_back("speedup_vs_memory.svg");
