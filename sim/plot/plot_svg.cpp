@@ -279,6 +279,9 @@ std::string line_plot_svg(const LinePlot& plot) {
                 continue;
             }
             run.emplace_back(f.px(s.x[k]), f.py(s.y[k]));
+            if (i < plot.point_labels.size() && k < plot.point_labels[i].size() && !plot.point_labels[i][k].empty())
+                dots += "<text x=\"" + num(run.back().first + 6) + "\" y=\"" + num(run.back().second - 6) +
+                        "\" font-size=\"10\" fill=\"" + color + "\">" + xml_escape(plot.point_labels[i][k]) + "</text>\n";
             if (plot.markers || !plot.lines)
                 dots += "<circle cx=\"" + num(run.back().first) + "\" cy=\"" + num(run.back().second) + "\" r=\"" +
                         (plot.lines ? "3" : "4") + "\" fill=\"" + color + "\"/>\n";

@@ -36,6 +36,7 @@ struct LinePlot {
     std::vector<PlotSeries> series;
     bool markers = true;  // a dot at every data point
     bool lines = true;    // join a series' points (off for categorical x)
+    std::vector<std::vector<std::string>> point_labels;  // optional, per series and point: beside its marker
 };
 
 // Colour of series i of n: the Okabe-Ito palette (colour-blind safe) up to

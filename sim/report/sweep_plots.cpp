@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 
 namespace rtc {
@@ -201,57 +202,86 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
     const std::vector<SweepAxis> axes = sweep_axes(runs);
     const auto nan = std::numeric_limits<double>::quiet_NaN();
 
-    for (std::size_t ai = 0; ai < axes.size(); ++ai) {
-        const SweepAxis& axis = axes[ai];
-        if (axis.values.size() < 2) continue;
-        // One series per method and combination of the other axes' values.
-        std::vector<PlotSeries> series;
-        for (const std::string& method : others)
-            for (const RunResult& r : runs) {
-                const std::string rest = values_text(r, axes, ai);
-                const std::string name = one ? (rest.empty() ? method : rest) : method + (rest.empty() ? "" : ", " + rest);
-                PlotSeries& ps = series_named(series, name);
-                const double s = r.speedup(method);
-                ps.x.push_back(axis.x[axis.index_of(r)]);
-                ps.y.push_back(s > 0 ? s : nan);
-            }
-        // An axis that changes no speedup (memory or cost presets) is not worth a plot.
-        const bool flat = std::all_of(series.begin(), series.end(), [](const PlotSeries& s) {
-            double lo = INFINITY, hi = -INFINITY;
-            for (double y : s.y)
-                if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
-            return !(hi - lo > 1e-9 * std::abs(hi));
-        });
-        if (flat) continue;
-        LinePlot plot;
-        plot.axes.title = "speedup of " + who + " over " + bname + " vs " + axis.name;
-        plot.axes.subtitle = preset_text;
-        plot.axes.x_label = axis.name + (axis.log ? " (log scale)" : "");
-        plot.axes.y_label = y_label;
-        plot.axes.log_x = axis.log;
-        plot.lines = axis.numeric;  // categories in sweep order are not joined
-        for (std::size_t i = 0; i < axis.values.size(); ++i) plot.axes.x_ticks.push_back({axis.x[i], axis.tick[i]});
-        for (PlotSeries& s : series)
-            if (axis.numeric) {  // left to right
-                std::vector<std::size_t> order(s.x.size());
-                for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-                std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
-                PlotSeries sorted{s.name, {}, {}};
-                for (std::size_t i : order) sorted.x.push_back(s.x[i]), sorted.y.push_back(s.y[i]);
-                s = std::move(sorted);
-            }
-        plot.series = std::move(series);
-        std::string file = "speedup_vs_" + axis.key + ".svg";
-        if (file == "speedup_vs_memory.svg") file = "speedup_vs_memory_preset.svg";  // the Pareto plot's name
-        for (char& ch : file) if (ch == '/') ch = '_';
-        write_text_file(path_in(dir, file), line_plot_svg(plot));
-        written.push_back(file);
-    }
+    // Per axis: `value(run, method)` of each method against it, one series per
+    // method and combination of the other axes' values; no plot when no
+    // series changes by more than `flat` (relative) along the axis.
+    struct Quantity {
+        std::string file, title, y_label, subtitle;
+        const std::vector<std::string>* methods;
+        std::function<double(const RunResult&, const std::string&)> value;
+        double flat;
+        bool log_y_beyond_decade;
+    };
+    const bool memory_swept = std::any_of(runs.begin(), runs.end(), [&](const RunResult& r) {
+        return r.memory.name != runs.front().memory.name;
+    });
+    const std::string memory_text = memory_swept ? "memory preset as named per series or axis"
+                                                 : "memory preset " + runs.front().memory.name;
+    std::vector<std::string> all = others;
+    all.insert(all.begin(), bname);
+    const Quantity quantities[] = {
+        {"speedup_vs_", "speedup of " + who + " over " + bname + " vs ", y_label, preset_text, &others,
+         [](const RunResult& r, const std::string& m) { return r.speedup(m); }, 1e-9, false},
+        {"memory_vs_", "total memory of each method vs ", "memory (MiB)", memory_text,
+         &all, [](const RunResult& r, const std::string& m) {
+             const MethodRun* run = r.find(m);
+             return run && run->runnable ? run->memory.total() / (1024.0 * 1024.0) : 0.0;
+         }, 0.01, true}};
+    for (const Quantity& q : quantities)
+        for (std::size_t ai = 0; ai < axes.size(); ++ai) {
+            const SweepAxis& axis = axes[ai];
+            const bool single = q.methods->size() == 1;
+            std::vector<PlotSeries> series;
+            for (const std::string& method : *q.methods)
+                for (const RunResult& r : runs) {
+                    const std::string rest = values_text(r, axes, ai);
+                    const std::string name = single ? (rest.empty() ? method : rest) : method + (rest.empty() ? "" : ", " + rest);
+                    PlotSeries& ps = series_named(series, name);
+                    const double v = q.value(r, method);
+                    ps.x.push_back(axis.x[axis.index_of(r)]);
+                    ps.y.push_back(v > 0 ? v : nan);
+                }
+            std::vector<double> ys;
+            const bool flat = std::all_of(series.begin(), series.end(), [&](const PlotSeries& s) {
+                double lo = INFINITY, hi = -INFINITY;
+                for (double y : s.y)
+                    if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y), ys.push_back(y);
+                return !(hi - lo > q.flat * std::abs(hi));
+            });
+            if (flat) continue;
+            LinePlot plot;
+            plot.axes.title = q.title + axis.name;
+            plot.axes.subtitle = q.subtitle;
+            plot.axes.x_label = axis.name + (axis.log ? " (log scale)" : "");
+            plot.axes.y_label = q.y_label;
+            plot.axes.log_x = axis.log;
+            plot.axes.log_y = q.log_y_beyond_decade && spans_decades(ys, 1.0);
+            if (plot.axes.log_y) plot.axes.y_label += " (log scale)";
+            plot.lines = axis.numeric;  // categories in sweep order are not joined
+            for (std::size_t i = 0; i < axis.values.size(); ++i) plot.axes.x_ticks.push_back({axis.x[i], axis.tick[i]});
+            for (PlotSeries& s : series)
+                if (axis.numeric) {  // left to right
+                    std::vector<std::size_t> order(s.x.size());
+                    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+                    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
+                    PlotSeries sorted{s.name, {}, {}};
+                    for (std::size_t i : order) sorted.x.push_back(s.x[i]), sorted.y.push_back(s.y[i]);
+                    s = std::move(sorted);
+                }
+            plot.series = std::move(series);
+            std::string file = q.file + axis.key + ".svg";
+            if (file == "speedup_vs_memory.svg" || file == "memory_vs_memory.svg")  // the Pareto plot's name
+                file = q.file + "memory_preset.svg";
+            for (char& ch : file) if (ch == '/') ch = '_';
+            write_text_file(path_in(dir, file), line_plot_svg(plot));
+            written.push_back(file);
+        }
 
     // The Pareto view: speedup against memory overhead, one line per method
     // and value of the first (slowest) axis when there are several, its
     // points in sweep order.
     std::vector<PlotSeries> pareto;
+    std::vector<std::vector<std::string>> pareto_labels;  // per series, per point
     for (const std::string& method : others)
         for (const RunResult& r : runs) {
             const double s = r.speedup(method), o = r.memory_overhead_percent(method);
@@ -261,17 +291,25 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
             PlotSeries& ps = series_named(pareto, one ? (rest.empty() ? method : rest) : method + (rest.empty() ? "" : ", " + rest));
             ps.x.push_back(o);
             ps.y.push_back(s);
+            std::string along;  // the point's values on the other axes
+            for (std::size_t a = axes.size() > 1 ? 1 : 0; a < axes.size(); ++a)
+                along += (along.empty() ? "" : " / ") + axes[a].tick[axes[a].index_of(r)];
+            pareto_labels.resize(pareto.size());
+            pareto_labels[static_cast<std::size_t>(&ps - pareto.data())].push_back(along);
         }
     if (std::any_of(pareto.begin(), pareto.end(), [](const PlotSeries& p) { return p.x.size() > 1; })) {
         LinePlot plot;
         plot.axes.title = "speedup over " + bname + " vs memory overhead (Pareto)";
-        plot.axes.subtitle = preset_text + (axes.size() > 1 ? "; along a line: " + axes[1].name + (axes.size() > 2 ? ", ..." : "") : "");
+        std::string along;
+        for (std::size_t a = axes.size() > 1 ? 1 : 0; a < axes.size(); ++a) along += (along.empty() ? "" : " / ") + axes[a].name;
+        plot.axes.subtitle = preset_text + (along.empty() ? "" : "; points labelled by " + along);
         plot.axes.x_label = "total memory over " + bname + " (%)";
         plot.axes.y_label = "speedup (" + bname + " cycles / method cycles)";
         plot.axes.height = 480;
         // Lines only along numeric axes (cluster size, tilt); categories have no order to follow.
         plot.lines = std::all_of(axes.begin() + (axes.size() > 1 ? 1 : 0), axes.end(), [](const SweepAxis& a) { return a.numeric; });
         plot.series = std::move(pareto);
+        plot.point_labels = std::move(pareto_labels);
         write_text_file(path_in(dir, "speedup_vs_memory.svg"), line_plot_svg(plot));
         written.push_back("speedup_vs_memory.svg");
     }
