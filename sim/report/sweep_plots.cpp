@@ -159,11 +159,12 @@ std::vector<SweepAxis> sweep_axes(const std::vector<RunResult>& runs) {
     return axes;
 }
 
-// The legend text of a run's values on every axis but `skip` (SIZE_MAX: none).
-std::string values_text(const RunResult& r, const std::vector<SweepAxis>& axes, std::size_t skip) {
+// The legend text of a run's values on every axis in `use` but `skip`.
+std::string values_text(const RunResult& r, const std::vector<SweepAxis>& axes, std::size_t skip,
+                        const std::vector<bool>& use) {
     std::string s;
     for (std::size_t a = 0; a < axes.size(); ++a) {
-        if (a == skip || axes[a].values.size() < 2) continue;
+        if (a == skip || axes[a].values.size() < 2 || !use[a]) continue;
         const std::size_t i = axes[a].index_of(r);
         if (i < axes[a].values.size()) s += (s.empty() ? "" : ", ") + axes[a].legend[i];
     }
@@ -227,28 +228,42 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
              const MethodRun* run = r.find(m);
              return run && run->runnable ? run->memory.total() / (1024.0 * 1024.0) : 0.0;
          }, 0.01, true}};
-    for (const Quantity& q : quantities)
-        for (std::size_t ai = 0; ai < axes.size(); ++ai) {
+    for (const Quantity& q : quantities) {
+        const bool single = q.methods->size() == 1;
+        // Series over axis `ai`, split by the other axes in `use` (a point
+        // already there for its series and x is not repeated).
+        const auto build = [&](std::size_t ai, const std::vector<bool>& use) {
             const SweepAxis& axis = axes[ai];
-            const bool single = q.methods->size() == 1;
             std::vector<PlotSeries> series;
             for (const std::string& method : *q.methods)
                 for (const RunResult& r : runs) {
-                    const std::string rest = values_text(r, axes, ai);
+                    const std::string rest = values_text(r, axes, ai, use);
                     const std::string name = single ? (rest.empty() ? method : rest) : method + (rest.empty() ? "" : ", " + rest);
                     PlotSeries& ps = series_named(series, name);
-                    const double v = q.value(r, method);
-                    ps.x.push_back(axis.x[axis.index_of(r)]);
+                    const double x = axis.x[axis.index_of(r)], v = q.value(r, method);
+                    if (std::find(ps.x.begin(), ps.x.end(), x) != ps.x.end()) continue;
+                    ps.x.push_back(x);
                     ps.y.push_back(v > 0 ? v : nan);
                 }
-            std::vector<double> ys;
-            const bool flat = std::all_of(series.begin(), series.end(), [&](const PlotSeries& s) {
+            return series;
+        };
+        const auto flat = [&](const std::vector<PlotSeries>& series) {
+            return std::all_of(series.begin(), series.end(), [&](const PlotSeries& s) {
                 double lo = INFINITY, hi = -INFINITY;
                 for (double y : s.y)
-                    if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y), ys.push_back(y);
+                    if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
                 return !(hi - lo > q.flat * std::abs(hi));
             });
-            if (flat) continue;
+        };
+        // Axes that change the quantity; the others neither get a plot nor split series.
+        std::vector<bool> matters(axes.size());
+        for (std::size_t ai = 0; ai < axes.size(); ++ai) matters[ai] = !flat(build(ai, std::vector<bool>(axes.size(), true)));
+        for (std::size_t ai = 0; ai < axes.size(); ++ai) {
+            if (!matters[ai]) continue;
+            const SweepAxis& axis = axes[ai];
+            std::vector<PlotSeries> series = build(ai, matters);
+            std::vector<double> ys;
+            for (const PlotSeries& ps : series) ys.insert(ys.end(), ps.y.begin(), ps.y.end());
             LinePlot plot;
             plot.axes.title = q.title + axis.name;
             plot.axes.subtitle = q.subtitle;
@@ -276,6 +291,7 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
             write_text_file(path_in(dir, file), line_plot_svg(plot));
             written.push_back(file);
         }
+    }
 
     // The Pareto view: speedup against memory overhead, one line per method
     // and value of the first (slowest) axis when there are several, its
