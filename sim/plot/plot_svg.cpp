@@ -205,10 +205,11 @@ std::string polyline(const std::vector<std::pair<double, double>>& pts, const st
 
 std::string series_color(std::size_t i, std::size_t n) {
     if (n <= kPalette.size()) return kPalette[i % kPalette.size()];
-    // Evenly spaced hues at a fixed, readable lightness (HSL s = 0.7, l = 0.42).
-    const double h = 360.0 * static_cast<double>(i) / static_cast<double>(n);
-    const double c = (1.0 - std::abs(2.0 * 0.42 - 1.0)) * 0.7, hp = h / 60.0;
-    const double xx = c * (1.0 - std::abs(std::fmod(hp, 2.0) - 1.0)), m = 0.42 - c / 2.0;
+    // Evenly spaced hues (HSL s = 0.75), neighbours told apart by lightness too
+    // (0.32 and 0.55 alternating).
+    const double h = 360.0 * static_cast<double>(i) / static_cast<double>(n), l = i % 2 ? 0.55 : 0.32;
+    const double c = (1.0 - std::abs(2.0 * l - 1.0)) * 0.75, hp = h / 60.0;
+    const double xx = c * (1.0 - std::abs(std::fmod(hp, 2.0) - 1.0)), m = l - c / 2.0;
     double r = 0, g = 0, b = 0;
     if (hp < 1) r = c, g = xx;
     else if (hp < 2) r = xx, g = c;

@@ -27,7 +27,7 @@ std::string text(const std::string& s) {
     std::string out;
     for (const char c : s) {
         if (c == ',') out += ';';
-        else if (c == '"' || c == '\'') continue;
+        else if (c == '"') continue;
         else if (c == '#') out += "No.";
         else if (c == '\n' || c == '\r' || c == '\t') out += ' ';
         else out += c;
