@@ -70,3 +70,19 @@ def test_rtcsim_plot_reads_the_combined_report(sweep_out):
     import rtcsim
     reports = rtcsim.load_reports(sweep_out)
     assert [r.sweep_point["scene.tilt_deg"] for r in reports] == [0, 45, 0, 45]
+
+
+def test_na_rows_load_as_nan(simulate, tmp_path):
+    out = tmp_path / "na"
+    done = simulate("tests/configs/tiny.json", "--quiet", "--threads", "2", "--out", out,
+                    "--set", 'methods=["ref","obb","lss"]', "--set", "primitives.kind=phantom",
+                    "--set", 'output={"images":false,"arrays":false}',
+                    "--set", "workload.width=8", "--set", "workload.height=8")
+    assert done.returncode == 0, done.stderr
+    data = np.genfromtxt(out / "results.csv", names=True, delimiter=",", dtype=None, encoding=None)
+    lss = data["method"] == "lss"
+    assert lss.sum() == 1
+    for field in ("rays", "cycles", "speedup", "memory_bytes"):
+        assert np.issubdtype(data[field].dtype, np.floating), field
+        assert np.isnan(data[field][lss]).all() and not np.isnan(data[field][~lss]).any(), field
+    assert "not linear swept spheres" in data["reason"][lss][0]

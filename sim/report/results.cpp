@@ -91,9 +91,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
                           "is_calls", "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent",
                           "reason"})
         header.emplace_back(c);
-    std::string csv;
-    for (std::size_t i = 0; i < header.size(); ++i) csv += (i ? "," : "") + header[i];
-    csv += '\n';
+    std::vector<std::vector<std::string>> rows;
     for (std::size_t point = 0; point < runs.size(); ++point) {
         const RunResult& r = runs[point];
         std::vector<std::string> head{text(r.config.name), std::to_string(point)};
@@ -131,10 +129,29 @@ std::string results_csv(const std::vector<RunResult>& runs) {
                       m.runnable ? per(calls, rays) : "", raw(mem), raw(mem / (1024.0 * 1024.0)), raw(overhead),
                       text(reason)})
                     row.push_back(c);
-                for (std::size_t i = 0; i < row.size(); ++i) csv += (i ? "," : "") + row[i];
-                csv += '\n';
+                rows.push_back(std::move(row));
             }
         }
+    }
+    // A column of whole numbers with an empty cell is written as 12.0, 7.0:
+    // numpy.genfromtxt would read it as integers and fill the gap with -1.
+    for (std::size_t c = 0; c < header.size(); ++c) {
+        bool empty = false, whole = true;
+        for (const auto& row : rows) {
+            const std::string& v = row[c];
+            empty = empty || v.empty();
+            const std::size_t digits = v.find_first_not_of("0123456789", v.starts_with('-') ? 1 : 0);
+            whole = whole && (v.empty() || (digits == std::string::npos && v != "-"));
+        }
+        if (empty && whole)
+            for (auto& row : rows)
+                if (!row[c].empty()) row[c] += ".0";
+    }
+    std::string csv;
+    rows.insert(rows.begin(), header);
+    for (const auto& row : rows) {
+        for (std::size_t i = 0; i < row.size(); ++i) csv += (i ? "," : "") + row[i];
+        csv += '\n';
     }
     return csv;
 }

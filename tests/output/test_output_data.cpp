@@ -209,3 +209,31 @@ TEST_CASE("output data: a ray-file run writes per-ray counts that sum to the tot
     CHECK(!fs::exists(fs::path(none) / "counts_ref.npy"));
     CHECK(fs::exists(fs::path(none) / "results.csv"));
 }
+
+TEST_CASE("output data: a method that cannot run gives rows with empty numbers and a reason") {
+    const std::string out = out_dir("na");
+    run(out, {"methods=[\"ref\",\"obb\",\"lss\"]", "primitives.kind=phantom", "output={\"images\":false}",
+              "workload.width=8", "workload.height=8"});
+    const auto rows = csv_rows(read_text_file(out + "/results.csv"));
+    const std::vector<std::string>& header = rows[0];
+    const auto col = [&](const std::string& name) {
+        return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    REQUIRE(col("reason") < header.size());
+    int na = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        const auto& r = rows[i];
+        if (r[col("method")] != "lss") {
+            CHECK(r[col("reason")].empty());
+            CHECK(r[col("rays")].ends_with(".0"));  // whole numbers beside a gap: read as floats
+            CHECK(parses_as_number(r[col("rays")]));
+            continue;
+        }
+        ++na;
+        CHECK(r[col("reason")].find("not linear swept spheres") != std::string::npos);
+        for (const char* c : {"rays", "cycles", "cycles_per_ray", "speedup", "memory_bytes", "memory_overhead_percent"})
+            CHECK_MESSAGE(r[col(c)].empty(), c);
+    }
+    CHECK(na == 1);
+    CHECK(rows[1][col("primitive_count")] == "60");  // no gap in this column: an integer
+}
