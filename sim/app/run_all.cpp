@@ -124,6 +124,7 @@ int run_all(const CliOptions& cli) {
     // The last point in full (per-pixel data too) while the next point has
     // the same trace: it is re-priced from it instead of traced again.
     std::optional<RunResult> traced;
+    std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
     for (std::size_t i = 0; i < points.size(); ++i) {
         const std::string dir = points.size() == 1
                                     ? out
@@ -143,6 +144,7 @@ int run_all(const CliOptions& cli) {
         RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        if (parsed[i].output.arrays) (void)write_arrays(r, dir);
         (void)write_break_even_maps(r, dir);
         traced.reset();
         // (Ray and hit files are written while tracing: such points trace.)
@@ -152,15 +154,13 @@ int run_all(const CliOptions& cli) {
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
+            m.frame.ray_counts = {};
+            m.frame.more_pixel_warp_cycles = {};
             m.frame.radiance = {};
         }
         runs.push_back(std::move(r));
-        const Table t = summary_table(runs);
-        write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
-        write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
-        const Table st = speedup_table(runs);
-        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
-        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
+        point_dirs.push_back(points.size() == 1 ? "" : std::filesystem::path(dir).filename().string());
+        write_sweep_outputs(runs, point_dirs, out);
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet, cli.limits.force);

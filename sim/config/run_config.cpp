@@ -139,8 +139,9 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
     if (r.has("workload")) c.workload = parse_workload(r.child("workload"));
     if (r.has("output")) {
         const JsonReader o = r.child("output");
-        o.allow_only({"images", "rays", "hits"});
+        o.allow_only({"images", "arrays", "rays", "hits"});
         c.output.images = o.boolean("images", true);
+        c.output.arrays = o.boolean("arrays", true);
         c.output.write_rays = o.boolean("rays", false);
         c.output.write_hits = o.boolean("hits", false);
     }

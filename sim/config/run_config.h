@@ -15,6 +15,7 @@ namespace rtc {
 
 struct OutputOptions {
     bool images = true;       // render, heat maps, ratio map (PNG)
+    bool arrays = true;       // per-pixel (or per-ray) counts and cycles as .npy (docs/outputs.md)
     bool write_rays = false;  // rays.bin: every traced ray (32 B each)
     bool write_hits = false;  // hits_<method>.bin: each method's hit per ray (12 B each)
 };
