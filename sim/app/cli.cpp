@@ -39,6 +39,11 @@ cost preset and reports cycles, speedups, memory, heat maps and plots.
 usage:
   simulate CONFIG.json [options]            run a config (or each point of its sweep)
   simulate calibrate CONFIG.json [options]  fit cost parameters to target speedups
+  simulate CONFIG.json --shard I/N [options]  run shard I of N (docs/scale-out.md)
+  simulate merge DIR... [--out OUT]         merge the N shards' directories into
+                                            the outputs of a single run
+  simulate CONFIG.json --estimate [--shards N]  each shard's rays and memory, one
+                                            JSON line per shard, no run
   simulate --help | --version
 
 options (--opt value or --opt=value):
@@ -59,6 +64,10 @@ options (--opt value or --opt=value):
                         10,000 points), empty an output directory an earlier run
                         of simulate wrote, let calibrate overwrite its `output`
 
+  --shard I/N           run only shard I (0 .. N-1) of N: sweep points round robin,
+                        or bands of a frame's rows when there are fewer points
+                        than shards; writes frames/ and shard.json into --out
+  --estimate            print each shard's estimated work and exit (with --shards N)
 paths and presets:
   Every path in a config is relative to that config file. Presets are named by
   name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
@@ -71,6 +80,9 @@ examples (from the source tree; installed configs are in <prefix>/share/rtcsim/r
   simulate configs/runs/quickstart.json --out=out/quick-1spp --set workload.spp=1 --threads=2
   simulate configs/runs/fig3_bundles.json --set workload.width=200 --set workload.height=200
   simulate calibrate configs/runs/fig3_bundles.json --out out/fig3-fit
+  simulate configs/runs/quickstart.json --shard 0/2 --out out/quick-s0 --set workload.spp=1
+  simulate configs/runs/quickstart.json --shard 1/2 --out out/quick-s1 --set workload.spp=1
+  simulate merge out/quick-s0 out/quick-s1 --out out/quick-merged
 
 configs: configs/runs/*.json, keys documented in configs/README.md
 outputs: report.json (with provenance: version, commit, effective config,
@@ -115,15 +127,16 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     o.command_line.insert(o.command_line.end(), args.begin(), args.end());
     CLI::App app{"simulate"};
     app.set_help_flag();  // cli_help() is the help text
-    std::string out, threads, max_rays, max_memory;
+    std::string out, threads, max_rays, max_memory, shard, shards;
     std::vector<std::string> positional;
     app.add_flag("-h,--help", o.help);
     app.add_flag("--version", o.version);
     app.add_flag("-q,--quiet", o.quiet);
     app.add_flag("--force", o.limits.force);
+    app.add_flag("--estimate", o.estimate);
     // Given twice, the last value wins (as with --set, later overrides earlier).
     for (const auto& [name, value] : {std::pair{"--out", &out}, {"--threads", &threads}, {"--max-rays", &max_rays},
-                                      {"--max-memory", &max_memory}})
+                                      {"--max-memory", &max_memory}, {"--shard", &shard}, {"--shards", &shards}})
         app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     // One value per --set (a vector option would swallow the config name).
     app.add_option("--set", o.sets)
@@ -165,6 +178,24 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
         const std::optional<double> n = parse_byte_size(max_memory);
         if (!n) throw InputError("simulate: --max-memory: expected a size such as 8G or 512M, got \"" + max_memory + "\"");
         o.limits.max_memory = *n;
+    }
+    if (given("--shard")) {
+        require_value(shard, "--shard");
+        o.shard = parse_shard_spec(shard, "simulate: --shard");
+    }
+    if (given("--shards")) {
+        require_value(shards, "--shards");
+        if (!o.estimate) throw InputError("simulate: --shards goes with --estimate (a run takes --shard I/N)");
+        o.estimate_shards = parse_shard_spec("0/" + shards, "simulate: --shards").count;
+    }
+    if (!positional.empty() && positional.front() == "merge") {
+        o.merge = true;
+        o.merge_dirs.assign(positional.begin() + 1, positional.end());
+        if (o.merge_dirs.empty())
+            throw InputError("simulate: merge needs the shards' directories (simulate merge DIR... --out OUT)");
+        if (o.shard || o.estimate || !o.sets.empty())
+            throw InputError("simulate: merge takes no --shard, --estimate or --set (the shards carry their config)");
+        return o;
     }
     if (!positional.empty() && positional.front() == "calibrate") {
         o.calibrate = true;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "sim/run/work_estimate.h"
+#include "sim/shard/shard_plan.h"
 
 #include <optional>
 #include <string>
@@ -22,6 +23,12 @@ struct CliOptions {
     // --force also empties an output directory an earlier run wrote and lets
     // calibrate overwrite an existing preset file: one flag for "I know, go on".
     std::vector<std::string> command_line;  // "simulate" and the arguments (provenance)
+    // Scale-out (docs/scale-out.md):
+    std::optional<ShardSpec> shard;          // --shard I/N
+    bool merge = false;                      // `simulate merge DIR...`
+    std::vector<std::string> merge_dirs;
+    bool estimate = false;                   // --estimate: per-shard work, no run
+    std::uint32_t estimate_shards = 1;       // --shards N (with --estimate)
 };
 
 // Throws InputError with a one-line message on bad arguments.

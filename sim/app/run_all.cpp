@@ -99,21 +99,28 @@ std::optional<RunResult> reprice_point(const RunPlan& plan, std::size_t i, const
     return r;
 }
 
+RunPlan plan_config_text(const std::string& file, const std::string& text, const std::vector<std::string>& sets,
+                         const WorkLimits& limits) {
+    return plan_runs(parse_json_text(text, file), file, sets, limits, sweep_key_order(text, sets));
+}
+
 int run_all(const CliOptions& cli) {
-    const std::string text = read_text_file(cli.config);
-    RunPlan plan = plan_runs(parse_json_text(text, cli.config), cli.config, cli.sets, cli.limits,
-                             sweep_key_order(text, cli.sets));
+    RunPlan plan = plan_config_text(cli.config, read_text_file(cli.config), cli.sets, cli.limits);
     plan.command_line = cli.command_line;
+    // Before any work: a calibrate output that would overwrite a file.
+    if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
+    const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
+    prepare_output_dir(out, cli.limits.force);
+    return run_planned(plan, cli, out, nullptr);
+}
+
+int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& out, const PointFrames* frames) {
     const nlohmann::json& config = plan.config;
     const std::vector<SweepPoint>& points = plan.points;
     const std::vector<RunConfig>& parsed = plan.parsed;
     const WorkEstimate& work = plan.work;
-    // Before any work: a calibrate output that would overwrite a file.
-    if (cli.calibrate) (void)calibrate_output_path(config, cli.config, cli.limits.force);
-    const std::string out = cli.out ? *cli.out : "out/" + parsed.front().name;
-    prepare_output_dir(out, cli.limits.force);
     if (!cli.quiet) {
-        std::cerr << "simulate " << cli.config << " -> " << out << "\neffective configuration:\n"
+        std::cerr << "simulate " << plan.file << " -> " << out << "\neffective configuration:\n"
                   << config.dump(2) << "\n";
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
         std::cerr << "estimate: " << count_text(work.rays) << " rays, "
@@ -141,6 +148,7 @@ int run_all(const CliOptions& cli) {
         ctx.quiet = cli.quiet;
         ctx.record_warps = cli.calibrate;
         ctx.out_dir = dir;
+        if (frames) ctx.frame_source = [frames, i](const std::string& method) { return (*frames)(i, method); };
         RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
@@ -163,7 +171,7 @@ int run_all(const CliOptions& cli) {
         write_sweep_outputs(runs, point_dirs, out);
     }
     write_sweep_plots(runs, out);
-    if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet, cli.limits.force);
+    if (cli.calibrate) calibrate_runs(runs, config, plan.file, out, cli.quiet, cli.limits.force);
     std::cout << summary_table(runs).to_console();
     if (!cli.quiet) std::cerr << "outputs in " << out << "/\n";
     return 0;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,20 @@ struct RunPlan {
 [[nodiscard]] std::optional<RunResult> reprice_point(const RunPlan& plan, std::size_t i, const RunResult& traced,
                                                      unsigned threads);
 
+// The plan of a config given as text (as read from `file`), with the
+// command line's overrides and limits; the sweep runs in written key order.
+[[nodiscard]] RunPlan plan_config_text(const std::string& file, const std::string& text,
+                                       const std::vector<std::string>& sets, const WorkLimits& limits);
+
 // Returns the process exit code. Throws InputError on bad input.
 int run_all(const CliOptions& cli);
+
+// Each method's frame of each sweep point, assembled rather than traced
+// (`simulate merge`).
+using PointFrames = std::function<FrameResult(std::size_t point, const std::string& method)>;
+
+// Runs every point of `plan` and writes every output into `out` (prepared
+// by the caller); with `frames`, points take their frames from it.
+int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& out, const PointFrames* frames);
 
 }  // namespace rtc

@@ -2,6 +2,7 @@
 
 #include "sim/app/cli.h"
 #include "sim/app/run_all.h"
+#include "sim/app/shard_runs.h"
 #include "core/input_error.h"
 #include "sim/util/json_file.h"
 #include "sim/util/version.h"
@@ -24,6 +25,9 @@ int simulate_main(const std::vector<std::string>& args) {
                       << (git_dirty() ? ", uncommitted changes" : "") << ")\n";
             return 0;
         }
+        if (cli.merge) return run_merge(cli);
+        if (cli.estimate) return print_shard_estimates(cli);
+        if (cli.shard) return run_shard(cli);
         return run_all(cli);
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());

@@ -13,8 +13,10 @@
 #include "sim/hardware/leaf_programs.h"
 #include "sim/hardware/warp_trace.h"
 
+#include <algorithm>
 #include <chrono>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace rtc {
@@ -26,6 +28,14 @@ struct RayWorkload {
     Camera camera;
     PathOptions path;
     std::vector<Ray> rays;  // when !from_camera
+};
+
+// One task's totals, kept in sharded runs (FrameOptions::bands) so that a
+// merge adds the bands' tasks in the single run's order.
+struct FrameTask {
+    EventTotals totals;
+    std::uint64_t rays_traced = 0;
+    std::vector<WarpTotals> warp;  // per warp preset
 };
 
 struct FrameResult {
@@ -45,6 +55,14 @@ struct FrameResult {
     std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves
     std::vector<float> pixel_simt_slots;    // per pixel: rounds x W of its waves
     WarpTrace warp_trace;                   // every wave, when FrameOptions::record_warps
+    // The frame's tasks (image rows, tile rows, blocks of rays) and those this
+    // result traced, [task_begin, task_end); the pixels (camera) or rays (ray
+    // lists) they cover, [item_begin, item_end). A banded run traces part of
+    // the frame: its per-pixel arrays are zero elsewhere, and `tasks` holds
+    // each task's totals.
+    std::size_t task_count = 0, task_begin = 0, task_end = 0;
+    std::size_t item_begin = 0, item_end = 0;
+    std::vector<FrameTask> tasks;
 };
 
 struct FrameOptions {
@@ -59,7 +77,31 @@ struct FrameOptions {
     const ExecutionModel* warp = nullptr;
     std::vector<const CostModel*> warp_presets;
     bool record_warps = false;
+    // Sharded runs (sim/shard): trace only band `band` of `bands` contiguous
+    // bands of the frame's tasks and keep each task's totals; 0 bands: the
+    // whole frame, no task records.
+    std::uint32_t band = 0, bands = 0;
 };
+
+// Band `band` of `bands` over `tasks` tasks: [first, second), contiguous; the
+// bands together cover every task once (some are empty when tasks < bands).
+[[nodiscard]] inline std::pair<std::size_t, std::size_t> band_range(std::size_t tasks, std::uint32_t band,
+                                                                    std::uint32_t bands) {
+    if (bands == 0) return {0, tasks};
+    if (band >= bands) return {tasks, tasks};
+    return {tasks * band / bands, tasks * (band + 1) / bands};  // tasks < 2^40, bands <= 10^5: no overflow
+}
+
+// Records the band's range, and each task's totals when banded.
+inline void finish_band(FrameResult& out, const FrameOptions& fo, std::size_t tasks, std::size_t first,
+                        std::size_t last, std::size_t items_per_task, std::size_t items) {
+    out.task_count = tasks;
+    out.task_begin = first;
+    out.task_end = last;
+    out.item_begin = std::min(items, first * items_per_task);
+    out.item_end = std::min(items, last * items_per_task);
+    if (fo.bands == 0) out.tasks.clear();
+}
 
 // `tracer(const Ray&, CountingSink&, TraceScratch&) -> TraceHit` traces one
 // ray; it is a method's template instantiation, called directly (no virtual
@@ -80,7 +122,8 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         std::vector<TraceHit> hits;
         std::uint64_t rays_traced = 0;
     };
-    std::vector<Tile> tile_out(tiles);
+    const auto [first, last] = band_range(tiles, fo.band, fo.bands);
+    std::vector<Tile> tile_out(last - first);
     std::vector<TraceScratch> scratch(threads);
     if (frame.from_camera) {
         out.width = frame.camera.width;
@@ -91,10 +134,11 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         out.ray_counts.resize(frame.rays.size());
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
-    Progress progress(fo.label, tiles, fo.progress);
+    Progress progress(fo.label, last - first, fo.progress);
 
-    parallel_for(tiles, threads, [&](std::size_t tile, unsigned thread) {
-        Tile& t = tile_out[tile];
+    parallel_for(last - first, threads, [&, first = first](std::size_t i, unsigned thread) {
+        const std::size_t tile = first + i;
+        Tile& t = tile_out[i];
         const auto trace = [&](const Ray& ray, RayCounts& into) {
             CountingSink sink;
             const TraceHit hit = tracer(ray, sink, scratch[thread]);
@@ -135,7 +179,12 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         out.rays_traced += t.rays_traced;
         out.rays.insert(out.rays.end(), t.rays.begin(), t.rays.end());
         out.hits.insert(out.hits.end(), t.hits.begin(), t.hits.end());
+        if (fo.bands) out.tasks.push_back({t.totals, t.rays_traced, {}});
     }
+    if (frame.from_camera)
+        finish_band(out, fo, tiles, first, last, static_cast<std::size_t>(out.width), out.pixel_counts.size());
+    else
+        finish_band(out, fo, tiles, first, last, kRaysPerTile, frame.rays.size());
     out.trace_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;

@@ -36,7 +36,8 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         std::vector<TraceHit> hits;
         std::uint64_t rays_traced = 0;
     };
-    std::vector<Task> task_out(tasks);
+    const auto [first, last] = band_range(tasks, fo.band, fo.bands);
+    std::vector<Task> task_out(last - first);
     // Per thread: scratch, call profiles, program prices per preset, waves per bounce.
     std::vector<TraceScratch> scratch(threads);
     std::vector<CallProfiles> profiles(threads);
@@ -58,10 +59,11 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     const bool keep_rays = fo.record_rays || fo.record_hits;
-    Progress progress(fo.label, tasks, fo.progress);
+    Progress progress(fo.label, last - first, fo.progress);
 
-    parallel_for(tasks, threads, [&](std::size_t task, unsigned thread) {
-        Task& t = task_out[task];
+    parallel_for(last - first, threads, [&, first = first](std::size_t i, unsigned thread) {
+        const std::size_t task = first + i;
+        Task& t = task_out[i];
         t.warp.resize(presets);
         TraceScratch& sc = scratch[thread];
         std::vector<WaveWork>& wv = waves[thread];
@@ -170,7 +172,13 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         if (fo.record_warps) out.warp_trace.append(t.trace);
         out.rays.insert(out.rays.end(), t.rays.begin(), t.rays.end());
         out.hits.insert(out.hits.end(), t.hits.begin(), t.hits.end());
+        if (fo.bands) out.tasks.push_back({t.totals, t.rays_traced, std::move(t.warp)});
     }
+    if (frame.from_camera)
+        finish_band(out, fo, tasks, first, last, static_cast<std::size_t>(th) * static_cast<std::size_t>(out.width),
+                    static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+    else
+        finish_band(out, fo, tasks, first, last, rays_per_task, frame.rays.size());
     out.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -167,7 +167,9 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         fo.warp = r.warp_grouping ? &*r.warp_grouping : nullptr;
         fo.warp_presets = warp_presets;
         fo.record_warps = ctx.record_warps && r.warp_grouping.has_value();
-        m.frame = built->run(geometry, frame, c.trace, fo);
+        fo.band = ctx.band;
+        fo.bands = ctx.bands;
+        m.frame = ctx.frame_source ? ctx.frame_source(name) : built->run(geometry, frame, c.trace, fo);
         if (!ctx.out_dir.empty() && fo.record_rays) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
             rays_written = true;

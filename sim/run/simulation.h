@@ -11,6 +11,7 @@
 #include "sim/config/run_config.h"
 #include "sim/run/work_estimate.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -70,6 +71,11 @@ struct RunContext {
     bool keep_rays = false;     // keep the recorded rays and hits in the result (the Python module's arrays)
     std::string out_dir;  // rays/hits files are streamed here when requested
     WorkLimits limits;    // checked again once the scene is loaded
+    // Sharded runs (sim/shard, docs/scale-out.md): trace only band `band` of
+    // `bands` of each frame (0 bands: the whole frame), or, when merging,
+    // take each method's frame from `frame_source` instead of tracing it.
+    std::uint32_t band = 0, bands = 0;
+    std::function<FrameResult(const std::string& method)> frame_source;
 };
 
 [[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,

@@ -26,8 +26,9 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"config", {"methods", "execution", "workload", "hardware", "calibrate", "util"}},
     {"run", {"config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
     {"plot", {"util"}},
+    {"shard", {"execution", "workload", "hardware", "util"}},
     {"report", {"run", "plot", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
-    {"app", {"report", "run", "plot", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
+    {"app", {"shard", "report", "run", "plot", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
     {"bench", {"run", "config", "methods", "execution", "workload", "hardware", "calibrate", "util"}},
 };
 

@@ -5,7 +5,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 using namespace rtc;
@@ -38,25 +40,33 @@ std::vector<std::vector<std::string>> help_examples() {
 TEST_CASE("cli: every example in --help runs") {
     const auto examples = help_examples();
     REQUIRE(examples.size() >= 3);
+    std::map<std::string, fs::path> outs;  // an example's --out -> ours (merge examples name them)
     for (std::size_t i = 0; i < examples.size(); ++i) {
+        const fs::path out = fs::path(RTCSIM_BINARY_DIR) / "help_examples" / std::to_string(i);
+        const bool merge = !examples[i].empty() && examples[i].front() == "merge";
+        const bool shard = std::find(examples[i].begin(), examples[i].end(), "--shard") != examples[i].end();
         std::vector<std::string> args;
         for (std::size_t k = 0; k < examples[i].size(); ++k) {  // our own --out instead
-            if (examples[i][k] == "--out") {
-                ++k;
+            if (examples[i][k] == "--out" && k + 1 < examples[i].size()) {
+                outs[examples[i][++k]] = out;
                 continue;
             }
-            if (examples[i][k].rfind("--out=", 0) == 0) continue;
-            args.push_back(examples[i][k]);
+            if (examples[i][k].rfind("--out=", 0) == 0) {
+                outs[examples[i][k].substr(6)] = out;
+                continue;
+            }
+            const auto earlier = outs.find(examples[i][k]);
+            args.push_back(merge && earlier != outs.end() ? earlier->second.string() : examples[i][k]);
         }
-        const fs::path out = fs::path(RTCSIM_BINARY_DIR) / "help_examples" / std::to_string(i);
         fs::remove_all(out);
-        for (const char* s : {"workload.width=16", "workload.height=16", "workload.spp=1", "output.images=false"})
-            args.insert(args.end(), {"--set", s});
+        if (!merge)
+            for (const char* s : {"workload.width=16", "workload.height=16", "workload.spp=1", "output.images=false"})
+                args.insert(args.end(), {"--set", s});
         args.insert(args.end(), {"--quiet", "--threads", "2", "--out", out.string()});
         std::string line = "simulate";
         for (const std::string& a : args) line += " " + a;
         INFO(line);
         CHECK(simulate_main(args) == 0);
-        CHECK(fs::exists(out / "summary.csv"));
+        CHECK(fs::exists(out / (shard ? "shard.json" : "summary.csv")));
     }
 }

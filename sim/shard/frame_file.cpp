@@ -1,0 +1,266 @@
+#include "sim/shard/frame_file.h"
+
+#include "core/input_error.h"
+#include "scenes/loaders/file_bytes.h"
+
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <type_traits>
+
+namespace rtc {
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'T', 'C', 'F', 'R', 'A', 'M', 'E'};
+constexpr std::uint32_t kFormat = 1;
+
+class Writer {
+public:
+    explicit Writer(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "wb")) {
+        if (!f_) throw InputError(path + ": cannot open for writing");
+    }
+    ~Writer() {
+        if (f_) std::fclose(f_);
+    }
+    Writer(const Writer&) = delete;
+    Writer& operator=(const Writer&) = delete;
+
+    void bytes(const void* p, std::size_t n) {
+        if (n && std::fwrite(p, 1, n, f_) != n) throw InputError(path_ + ": write failed (disk full?)");
+    }
+    template <class T>
+    void put(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        bytes(&v, sizeof v);
+    }
+    template <class T>
+    void array(const std::vector<T>& v, std::size_t begin, std::size_t end) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        put<std::uint64_t>(end - begin);
+        if (end > begin) bytes(v.data() + begin, (end - begin) * sizeof(T));
+    }
+    void close() {
+        const int rc = std::fclose(f_);
+        f_ = nullptr;
+        if (rc != 0) throw InputError(path_ + ": write failed (disk full?)");
+    }
+
+private:
+    std::string path_;
+    std::FILE* f_;
+};
+
+class Reader {
+public:
+    explicit Reader(const std::string& path) : in_(read_file_bytes(path), path) {}
+
+    template <class T>
+    T get(const char* what) {
+        const T v = in_.get<T>(at_, what);
+        at_ += sizeof(T);
+        return v;
+    }
+    // A counted array of `T`, checked against the bytes left before allocating.
+    template <class T>
+    std::vector<T> array(const std::string& what) {
+        const std::size_t count_at = at_;
+        const auto n = get<std::uint64_t>(what.c_str());
+        in_.require_records(at_, n, sizeof(T), what, count_at);
+        std::vector<T> v(static_cast<std::size_t>(n));
+        if (n) std::memcpy(v.data(), in_.data(at_), v.size() * sizeof(T));
+        at_ += v.size() * sizeof(T);
+        return v;
+    }
+    // Throws unless `n` records of `bytes` each fit in what is left.
+    void require_records(std::uint64_t n, std::size_t bytes, const std::string& what, std::size_t count_at) const {
+        in_.require_records(at_, n, bytes, what, count_at);
+    }
+    [[noreturn]] void fail(const std::string& problem) const { in_.fail(at_, problem); }
+    [[nodiscard]] std::size_t offset() const { return at_; }
+    [[nodiscard]] bool at_end() const { return at_ == in_.size(); }
+
+private:
+    ByteReader in_;
+    std::size_t at_ = 0;
+};
+
+}  // namespace
+
+void write_frame_file(const std::string& path, const FrameResult& f) {
+    Writer w(path);
+    w.bytes(kMagic, sizeof kMagic);
+    w.put(kFormat);
+    w.put(static_cast<std::uint32_t>(kEventCount));
+    w.put(static_cast<std::uint32_t>(f.warp.size()));
+    w.put(static_cast<std::int32_t>(f.width));
+    w.put(static_cast<std::int32_t>(f.height));
+    w.put(static_cast<std::uint64_t>(f.task_count));
+    w.put(static_cast<std::uint64_t>(f.task_begin));
+    w.put(static_cast<std::uint64_t>(f.item_begin));
+    w.put(f.trace_seconds);
+    w.put(static_cast<std::uint64_t>(f.tasks.size()));
+    for (const FrameTask& t : f.tasks) {
+        if (t.warp.size() != f.warp.size()) throw InputError(path + ": internal: a task's warp presets differ");
+        w.put(t.totals);
+        w.put(t.rays_traced);
+        for (const WarpTotals& x : t.warp) w.put(x);
+    }
+    // The band's slice of each per-item array (empty arrays stay empty).
+    const auto slice = [&](const auto& v) { w.array(v, v.empty() ? 0 : f.item_begin, v.empty() ? 0 : f.item_end); };
+    slice(f.pixel_counts);
+    slice(f.ray_counts);
+    slice(f.radiance);
+    slice(f.pixel_warp_cycles);
+    slice(f.pixel_simt_active);
+    slice(f.pixel_simt_slots);
+    w.put(static_cast<std::uint64_t>(f.more_pixel_warp_cycles.size()));
+    for (const std::vector<float>& v : f.more_pixel_warp_cycles) slice(v);
+    w.array(f.rays, 0, f.rays.size());
+    w.array(f.hits, 0, f.hits.size());
+    w.close();
+}
+
+FrameResult read_frame_file(const std::string& path) {
+    Reader r(path);
+    char magic[8];
+    for (char& c : magic) c = r.get<char>("header");
+    if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("not an rtcsim shard frame file");
+    if (r.get<std::uint32_t>("format") != kFormat) r.fail("frame file format of another rtcsim version");
+    if (r.get<std::uint32_t>("event count") != kEventCount)
+        r.fail("written by an rtcsim with other events (another version)");
+    const auto presets = r.get<std::uint32_t>("warp presets");
+    if (presets > 1024) r.fail("implausible warp preset count " + std::to_string(presets));
+    FrameResult f;
+    f.width = r.get<std::int32_t>("width");
+    f.height = r.get<std::int32_t>("height");
+    if (f.width < 0 || f.height < 0 || (f.width == 0) != (f.height == 0)) r.fail("bad frame size");
+    f.task_count = r.get<std::uint64_t>("task count");
+    f.task_begin = r.get<std::uint64_t>("first task");
+    f.item_begin = r.get<std::uint64_t>("first item");
+    f.trace_seconds = r.get<double>("trace seconds");
+    const std::size_t tasks_at = r.offset();
+    const auto tasks = r.get<std::uint64_t>("tasks");
+    if (tasks > f.task_count || f.task_begin > f.task_count - tasks) {
+        r.fail("tasks " + std::to_string(f.task_begin) + " + " + std::to_string(tasks) + " exceed the frame's " +
+               std::to_string(f.task_count));
+    }
+    r.require_records(tasks, sizeof(EventTotals) + sizeof(std::uint64_t) + presets * sizeof(WarpTotals), "tasks",
+                      tasks_at);
+    f.warp.assign(presets, WarpTotals{});
+    f.tasks.resize(static_cast<std::size_t>(tasks));
+    for (FrameTask& t : f.tasks) {
+        t.totals = r.get<EventTotals>("task totals");
+        t.rays_traced = r.get<std::uint64_t>("task rays");
+        t.warp.resize(presets);
+        for (WarpTotals& x : t.warp) x = r.get<WarpTotals>("task warp totals");
+    }
+    f.task_end = f.task_begin + f.tasks.size();
+    // Items are pixels (camera frames) or rays (ray lists): each slice must
+    // lie inside the frame, whose ray count is not stored, so ray slices are
+    // bounded by the file's own size only.
+    const std::size_t pixels = static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height);
+    const auto slice = [&](auto& full, auto part, const char* what) {
+        if (part.empty()) return;
+        const std::size_t items = pixels ? pixels : f.item_begin + part.size();
+        if (f.item_begin > items || part.size() > items - f.item_begin)
+            r.fail(std::string(what) + " outside the " + std::to_string(pixels) + "-pixel frame");
+        if (f.item_end != f.item_begin && f.item_end != f.item_begin + part.size())
+            r.fail(std::string(what) + ": " + std::to_string(part.size()) + " items, the band has " +
+                   std::to_string(f.item_end - f.item_begin));
+        f.item_end = f.item_begin + part.size();
+        full.resize(items);
+        std::copy(part.begin(), part.end(), full.begin() + static_cast<std::ptrdiff_t>(f.item_begin));
+    };
+    f.item_end = f.item_begin;
+    slice(f.pixel_counts, r.array<RayCounts>("pixel counts"), "pixel counts");
+    slice(f.ray_counts, r.array<RayCounts>("ray counts"), "ray counts");
+    slice(f.radiance, r.array<Vec3>("radiance"), "radiance");
+    slice(f.pixel_warp_cycles, r.array<float>("pixel warp cycles"), "pixel warp cycles");
+    slice(f.pixel_simt_active, r.array<float>("pixel SIMT lanes"), "pixel SIMT lanes");
+    slice(f.pixel_simt_slots, r.array<float>("pixel SIMT slots"), "pixel SIMT slots");
+    const auto more = r.get<std::uint64_t>("warp presets with pixel cycles");
+    if (more > presets) r.fail("pixel cycles of " + std::to_string(more) + " more presets, the frame has " +
+                               std::to_string(presets));
+    f.more_pixel_warp_cycles.resize(static_cast<std::size_t>(more));
+    for (std::vector<float>& v : f.more_pixel_warp_cycles) slice(v, r.array<float>("pixel warp cycles"), "pixel warp cycles");
+    f.rays = r.array<Ray>("rays");
+    f.hits = r.array<TraceHit>("hits");
+    if (!r.at_end()) r.fail("unexpected bytes after the hits");
+    for (const FrameTask& t : f.tasks) {
+        f.totals += t.totals;
+        f.rays_traced += t.rays_traced;
+        for (std::size_t p = 0; p < presets; ++p) f.warp[p] += t.warp[p];
+    }
+    return f;
+}
+
+FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult(std::size_t)>& band_at,
+                              const std::string& what) {
+    if (count == 0) throw InputError(what + ": no bands to merge");
+    FrameResult out;
+    std::size_t presets = 0;
+    std::size_t next_task = 0;
+    // Copies a band's items [b, e) of one per-item array into the whole frame's.
+    const auto take = [](auto& full, const auto& part, std::size_t b, std::size_t e, std::size_t items) {
+        if (part.empty() || b == e) return;
+        if (full.size() < items) full.resize(items);
+        std::copy(part.begin() + static_cast<std::ptrdiff_t>(b), part.begin() + static_cast<std::ptrdiff_t>(e),
+                  full.begin() + static_cast<std::ptrdiff_t>(b));
+    };
+    for (std::size_t i = 0; i < count; ++i) {
+        const FrameResult b = band_at(i);  // one band in memory at a time
+        const std::string band = what + ": band " + std::to_string(i);
+        if (i == 0) {
+            out.width = b.width;
+            out.height = b.height;
+            out.task_count = b.task_count;
+            presets = b.warp.size();
+            out.warp.assign(presets, WarpTotals{});
+        } else if (b.width != out.width || b.height != out.height || b.task_count != out.task_count ||
+                   b.warp.size() != presets) {
+            throw InputError(band + ": frame shape differs from band 0's (shards of different runs?)");
+        }
+        if (b.task_begin != next_task)
+            throw InputError(band + ": starts at task " + std::to_string(b.task_begin) + ", expected " +
+                             std::to_string(next_task) + " (a band is missing or repeated)");
+        next_task = b.task_begin + b.tasks.size();
+        for (const FrameTask& t : b.tasks) {  // the single run's order: task 0, 1, 2, ...
+            if (t.warp.size() != presets) throw InputError(band + ": a task's warp presets differ");
+            out.totals += t.totals;
+            out.rays_traced += t.rays_traced;
+            for (std::size_t p = 0; p < presets; ++p) out.warp[p] += t.warp[p];
+        }
+        // Items: pixels of the frame, or rays of the list (up to this band's end).
+        const std::size_t items = out.width ? static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height)
+                                            : b.item_end;
+        if (b.item_begin > b.item_end || b.item_end > items || b.item_begin != out.item_end)
+            throw InputError(band + ": items " + std::to_string(b.item_begin) + " .. " + std::to_string(b.item_end) +
+                             " do not follow the previous band's " + std::to_string(out.item_end));
+        const auto take_all = [&](auto& full, const auto& part) {
+            if (!part.empty() && part.size() < b.item_end) throw InputError(band + ": an array shorter than its band");
+            take(full, part, b.item_begin, b.item_end, items);
+        };
+        take_all(out.pixel_counts, b.pixel_counts);
+        take_all(out.ray_counts, b.ray_counts);
+        take_all(out.radiance, b.radiance);
+        take_all(out.pixel_warp_cycles, b.pixel_warp_cycles);
+        take_all(out.pixel_simt_active, b.pixel_simt_active);
+        take_all(out.pixel_simt_slots, b.pixel_simt_slots);
+        if (out.more_pixel_warp_cycles.size() < b.more_pixel_warp_cycles.size())
+            out.more_pixel_warp_cycles.resize(b.more_pixel_warp_cycles.size());
+        for (std::size_t k = 0; k < b.more_pixel_warp_cycles.size(); ++k)
+            take_all(out.more_pixel_warp_cycles[k], b.more_pixel_warp_cycles[k]);
+        out.item_end = b.item_end;
+        out.rays.insert(out.rays.end(), b.rays.begin(), b.rays.end());
+        out.hits.insert(out.hits.end(), b.hits.begin(), b.hits.end());
+        out.trace_seconds += b.trace_seconds;
+    }
+    if (next_task != out.task_count)
+        throw InputError(what + ": the bands cover tasks 0 .. " + std::to_string(next_task) + " of " +
+                         std::to_string(out.task_count) + " (a band is missing)");
+    out.task_end = out.task_count;
+    return out;
+}
+
+}  // namespace rtc
