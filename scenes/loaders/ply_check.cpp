@@ -1,0 +1,138 @@
+// PLY pre-check (see ply_check.h); the format as in Paul Bourke's PLY spec.
+#include "scenes/loaders/ply_check.h"
+
+#include "scenes/loaders/text_lines.h"
+
+#include <cmath>
+#include <string_view>
+
+namespace rtc {
+
+namespace {
+
+struct Property {
+    std::string name;
+    int bytes = 0;        // scalar size, or the list's item size
+    int count_bytes = 0;  // > 0 for a list: the size of its count
+};
+struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    std::size_t line = 0;
+    std::vector<Property> properties;
+};
+
+int type_bytes(std::string_view t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "int32" || t == "uint32" || t == "float" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+}
+
+}  // namespace
+
+void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) {
+    const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    const std::size_t end = all.find("\nend_header");
+    if (all.substr(0, 3) != "ply") throw InputError(file + ": line 1: not a PLY file (no \"ply\" magic)");
+    if (end == std::string_view::npos) throw InputError(file + ": no \"end_header\" line");
+    std::size_t body = all.find('\n', end + 1);
+    body = body == std::string_view::npos ? all.size() : body + 1;
+    TextLines header(std::string(all.substr(0, body)), file);
+    std::string format;
+    std::vector<Element> elements;
+    while (header.next()) {
+        const auto& t = header.tokens();
+        if (header.line_number() == 1) {
+            if (t.size() != 1 || t[0] != "ply") header.fail("expected \"ply\"");
+            continue;
+        }
+        if (header.blank()) continue;
+        if (t[0] == "comment" || t[0] == "obj_info") continue;
+        if (t[0] == "format") {
+            if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian") ||
+                t[2] != "1.0")
+                header.fail("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+            format = t[1];
+        } else if (t[0] == "element") {
+            if (t.size() != 3) header.fail("expected \"element <name> <count>\"");
+            const auto n = header.number<long long>(2, "element count");
+            if (n < 0) header.fail("negative element count");
+            elements.push_back({std::string(t[1]), static_cast<unsigned long long>(n), header.line_number(), {}});
+        } else if (t[0] == "property") {
+            if (elements.empty()) header.fail("property before any element");
+            Property p;
+            if (t.size() == 5 && t[1] == "list") {
+                p.count_bytes = type_bytes(t[2]);
+                p.bytes = type_bytes(t[3]);
+                if (p.count_bytes == 0 || p.bytes == 0 || t[2] == "float" || t[2] == "double" ||
+                    t[2] == "float32" || t[2] == "float64")
+                    header.fail("bad list property types \"" + std::string(t[2]) + " " + std::string(t[3]) + "\"");
+            } else if (t.size() == 3) {
+                p.bytes = type_bytes(t[1]);
+                if (p.bytes == 0) header.fail("unknown property type \"" + std::string(t[1]) + "\"");
+            } else {
+                header.fail("expected \"property <type> <name>\" or \"property list <type> <type> <name>\"");
+            }
+            p.name = std::string(t.back());
+            elements.back().properties.push_back(std::move(p));
+        } else if (t[0] == "end_header") {
+            break;
+        } else {
+            header.fail("unknown header line \"" + std::string(t[0]) + "\"");
+        }
+    }
+    if (format.empty()) throw InputError(file + ": line 2: no \"format\" line in the header");
+    const unsigned long long left = all.size() - body;
+    unsigned long long need = 0;
+    for (const Element& e : elements) {
+        // The least an instance can take: binary sizes, or two bytes per ASCII field.
+        unsigned long long least = 0;
+        for (const Property& p : e.properties)
+            least += format == "ascii" ? 2 : static_cast<unsigned long long>(p.count_bytes ? p.count_bytes : p.bytes);
+        if (least > 0 && e.count > (left + 1) / least)
+            throw InputError(file + ": line " + std::to_string(e.line) + ": element " + e.name + " declares " +
+                             std::to_string(e.count) + " items, more than the " + std::to_string(left) +
+                             " bytes after the header can hold");
+        need += e.count * least;
+        if (need > left + 1)
+            throw InputError(file + ": line " + std::to_string(e.line) + ": the elements up to " + e.name +
+                             " need at least " + std::to_string(need) + " bytes, the body has " + std::to_string(left));
+    }
+    if (format != "ascii") return;
+
+    // ASCII body: one item per line, each field a number, list lengths as given.
+    TextLines text(std::string(all), file);
+    while (text.line_number() < header.line_number() && text.next()) {
+    }
+    unsigned long long vertices = 0;
+    for (const Element& e : elements) {
+        if (e.name == "vertex") vertices = e.count;
+        for (unsigned long long i = 0; i < e.count; ++i) {
+            do {
+                if (!text.next()) throw InputError(file + ": end of file in element " + e.name + " item " + std::to_string(i));
+            } while (text.blank());
+            std::size_t k = 0;
+            for (const Property& p : e.properties) {
+                const double first = text.number<double>(k++, p.name.c_str());
+                if (!std::isfinite(first)) text.fail("non-finite value for " + p.name);
+                if (!p.count_bytes) continue;
+                if (first < 0 || first != std::floor(first) || first > 1e6)
+                    text.fail("bad list length for " + p.name);
+                for (long long j = 0; j < static_cast<long long>(first); ++j) {
+                    const double v = text.number<double>(k++, p.name.c_str());
+                    const bool index = e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index");
+                    if (index && (v < 0 || v != std::floor(v) || v >= static_cast<double>(vertices)))
+                        text.fail("face refers to vertex " + std::string(text.tokens()[k - 1]) + ", the file has " +
+                                  std::to_string(vertices));
+                }
+            }
+            if (k != text.tokens().size())
+                text.fail("expected " + std::to_string(k) + " fields for element " + e.name + ", got " +
+                          std::to_string(text.tokens().size()));
+        }
+    }
+}
+
+}  // namespace rtc
