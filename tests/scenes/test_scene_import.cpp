@@ -162,3 +162,16 @@ TEST_CASE("mesh import: glTF with an embedded buffer and a node transform, ASCII
     CHECK(mesh_format_from_name("glb") == MeshFormat::Gltf);
     CHECK_FALSE(mesh_format_from_name("stl").has_value());
 }
+
+TEST_CASE("pbrt import: the fuzz seed with the other directives loads as pbrt-v4 reads it") {
+    const PbrtScene s = load_pbrt(std::filesystem::path(RTCSIM_SOURCE_DIR) / "tests/fuzz/corpus/pbrt/instances.pbrt");
+    CHECK(s.curve_shapes == 3);        // two instances of the object's curve, one ribbon
+    CHECK(s.mesh.triangles.size() == 5);  // 2 x (one bilinear patch = 2 triangles) + the loopsubdiv control triangle
+    CHECK(s.skipped_shapes.at("disk") == 1);
+    // Quadratic B-spline of 4 points: 2 segments, 2 samples each, + 1.
+    CHECK(s.curves.offsets[1] == 5);
+    // `Translate` while only the end-time transform is active does not move the last shape.
+    CHECK(near(s.mesh.vertices[s.mesh.vertices.size() - 3], Vec3(0, 0, 0)));
+    // The ribbon under the tilted frame scaled by 2: width 1 -> radius 1.
+    CHECK(s.curves.radii.back() == doctest::Approx(1.0));
+}
