@@ -53,6 +53,11 @@ TEST_CASE("pbrt import errors: syntax, parameters and structure") {
            "5 points, a degree 3 Bezier curve needs 3n + 1");
     expect(pbrt_error("\nShape \"curve\" \"string type\" \"ribbon\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n"),
            "bad.pbrt: line 2", "needs normals");
+    expect(pbrt_error("Shape \"curve\" \"string type\" \"ribbon\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]\n"
+                      "  \"normal N\" [ 0 0 1 ]"),
+           "bad.pbrt: line 2", "1 normals, need one per segment end (2)");
+    CHECK(pbrt_error("Shape \"curve\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ] \"normal N\" [ 0 0 1 ]") ==
+          "(no error)");  // N on a flat curve: ignored, as pbrt-v4 does
     expect(pbrt_error("Shape \"curve\" \"string basis\" \"hermite\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]"),
            "bad.pbrt: line 1", "\"bezier\" or \"bspline\"");
     expect(pbrt_error("Shape \"curve\" \"integer degree\" 4 \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ]"),

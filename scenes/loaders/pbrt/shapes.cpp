@@ -120,7 +120,8 @@ void add_curve(const ParamList& params, Strands& out) {
             params.fail(*w, "a width must lie in [0, 1e18]");
     const Param* N = params.find("N", "normal");
     if (type == "ribbon" && !N) params.fail("a \"ribbon\" curve needs normals \"normal N\"");
-    if (N && N->numbers.size() / 3 != segments + 1)
+    // pbrt-v4 discards N on other types (with a warning) and checks it on ribbons only.
+    if (type == "ribbon" && N->numbers.size() / 3 != segments + 1)
         params.fail(*N, std::to_string(N->numbers.size() / 3) + " normals, need one per segment end (" +
                             std::to_string(segments + 1) + ")");
     const double split = params.number("splitdepth", "integer", 3);
