@@ -14,6 +14,7 @@ struct Property {
     std::string name;
     int bytes = 0;        // scalar size, or the list's item size
     int count_bytes = 0;  // > 0 for a list: the size of its count
+    bool count_signed = false, item_signed = false, item_float = false;
 };
 struct Element {
     std::string name;
@@ -21,6 +22,60 @@ struct Element {
     std::size_t line = 0;
     std::vector<Property> properties;
 };
+
+bool type_signed(std::string_view t) { return t == "char" || t == "short" || t == "int" || t.substr(0, 3) == "int"; }
+bool type_float(std::string_view t) { return t == "float" || t == "double" || t == "float32" || t == "float64"; }
+
+// An integer of `bytes` bytes at `at`, in the file's byte order.
+long long read_int(const std::string_view all, std::size_t at, int bytes, bool is_signed, bool big_endian) {
+    unsigned long long u = 0;
+    for (int i = 0; i < bytes; ++i) {
+        const auto b = static_cast<unsigned char>(all[at + static_cast<std::size_t>(big_endian ? i : bytes - 1 - i)]);
+        u = (u << 8) | b;
+    }
+    if (is_signed && bytes < 8 && (u >> (8 * bytes - 1)) != 0) return static_cast<long long>(u) - (1LL << (8 * bytes));
+    return static_cast<long long>(u);
+}
+
+// Walks a binary body item by item: every list's length is read, so a file
+// cut anywhere (or a negative length) is found before assimp reads past the
+// end; face indices must name existing vertices.
+void check_binary_body(const std::string_view all, std::size_t pos, const std::vector<Element>& elements,
+                       bool big_endian, const std::string& file) {
+    auto fail = [&](std::size_t at, const std::string& problem) {
+        throw InputError(file + ": byte " + std::to_string(at) + ": " + problem);
+    };
+    unsigned long long vertices = 0;
+    for (const Element& e : elements) {
+        if (e.name == "vertex") vertices = e.count;
+        const bool face = e.name == "face";
+        for (unsigned long long i = 0; i < e.count; ++i) {
+            for (const Property& p : e.properties) {
+                const auto need = static_cast<std::size_t>(p.count_bytes ? p.count_bytes : p.bytes);
+                if (need > all.size() - pos)
+                    fail(pos, "file truncated in element " + e.name + " item " + std::to_string(i) + " (" + p.name + ")");
+                if (!p.count_bytes) {
+                    pos += need;
+                    continue;
+                }
+                const long long n = read_int(all, pos, p.count_bytes, p.count_signed, big_endian);
+                if (n < 0) fail(pos, "negative list length in element " + e.name + " item " + std::to_string(i));
+                pos += need;
+                if (static_cast<unsigned long long>(n) > (all.size() - pos) / static_cast<std::size_t>(p.bytes))
+                    fail(pos, "file truncated in element " + e.name + " item " + std::to_string(i) + " (" + p.name +
+                                  ": " + std::to_string(n) + " values)");
+                const bool index = face && !p.item_float && (p.name == "vertex_indices" || p.name == "vertex_index");
+                for (long long j = 0; j < n; ++j, pos += static_cast<std::size_t>(p.bytes)) {
+                    if (!index) continue;
+                    const long long v = read_int(all, pos, p.bytes, p.item_signed, big_endian);
+                    if (v < 0 || static_cast<unsigned long long>(v) >= vertices)
+                        fail(pos, "face " + std::to_string(i) + " refers to vertex " + std::to_string(v) +
+                                      ", the file has " + std::to_string(vertices));
+                }
+            }
+        }
+    }
+}
 
 int type_bytes(std::string_view t) {
     if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
@@ -66,6 +121,9 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
             if (t.size() == 5 && t[1] == "list") {
                 p.count_bytes = type_bytes(t[2]);
                 p.bytes = type_bytes(t[3]);
+                p.count_signed = type_signed(t[2]);
+                p.item_signed = type_signed(t[3]);
+                p.item_float = type_float(t[3]);
                 if (p.count_bytes == 0 || p.bytes == 0 || t[2] == "float" || t[2] == "double" ||
                     t[2] == "float32" || t[2] == "float64")
                     header.fail("bad list property types \"" + std::string(t[2]) + " " + std::string(t[3]) + "\"");
@@ -91,16 +149,16 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
         unsigned long long least = 0;
         for (const Property& p : e.properties)
             least += format == "ascii" ? 2 : static_cast<unsigned long long>(p.count_bytes ? p.count_bytes : p.bytes);
-        if (least > 0 && e.count > (left + 1) / least)
+        if (least > 0 && e.count > (left + (format == "ascii" ? 1 : 0)) / least)
             throw InputError(file + ": line " + std::to_string(e.line) + ": element " + e.name + " declares " +
                              std::to_string(e.count) + " items, more than the " + std::to_string(left) +
                              " bytes after the header can hold");
         need += e.count * least;
-        if (need > left + 1)
+        if (need > left + (format == "ascii" ? 1 : 0))
             throw InputError(file + ": line " + std::to_string(e.line) + ": the elements up to " + e.name +
                              " need at least " + std::to_string(need) + " bytes, the body has " + std::to_string(left));
     }
-    if (format != "ascii") return;
+    if (format != "ascii") return check_binary_body(all, body, elements, format == "binary_big_endian", file);
 
     // ASCII body: one item per line, each field a number, list lengths as given.
     TextLines text(std::string(all), file);

@@ -175,3 +175,33 @@ TEST_CASE("pbrt import: the fuzz seed with the other directives loads as pbrt-v4
     // The ribbon under the tilted frame scaled by 2: width 1 -> radius 1.
     CHECK(s.curves.radii.back() == doctest::Approx(1.0));
 }
+
+TEST_CASE("mesh import: binary little-endian PLY, and a body shorter than its header says") {
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float xyz[9] = {0, 0, 0, 4, 0, 0, 0, 0, -3};
+    ply.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    const std::int32_t idx[3] = {0, 1, 2};
+    ply += static_cast<char>(3);
+    ply.append(reinterpret_cast<const char*>(idx), sizeof idx);
+    const TriangleMesh m = load_mesh(scratch_file("binary.ply", ply));
+    CHECK(m.triangles.size() == 1);
+    const Aabb b = bounds_of(m.vertices);
+    CHECK(near(b.lo, Vec3(0, 0, -3)));
+    CHECK(near(b.hi, Vec3(4, 0, 0)));
+    // Cut inside the face list: the header promises 36 + 1 + 4 bytes at least.
+    const auto cut = scratch_file("binary_cut.ply", ply.substr(0, ply.size() - 13));
+    CHECK(test::error_of([&] { (void)load_mesh(cut); }).find("binary_cut.ply: line 7: the elements up to face need") !=
+          std::string::npos);
+    // Cut inside the list (the walk reads its length), and an index past the vertices.
+    const std::size_t list_at = ply.size() - 12;
+    const auto cut_list = scratch_file("binary_cut_list.ply", ply.substr(0, ply.size() - 4));
+    CHECK(test::error_of([&] { (void)load_mesh(cut_list); })
+              .find("binary_cut_list.ply: byte " + std::to_string(list_at) + ": file truncated in element face item 0") !=
+          std::string::npos);
+    std::string bad_index = ply;
+    bad_index[list_at + 8] = 3;
+    CHECK(test::error_of([&] { (void)load_mesh(scratch_file("binary_index.ply", bad_index)); })
+              .find("binary_index.ply: byte " + std::to_string(list_at + 8) + ": face 0 refers to vertex 3, the file has 3") !=
+          std::string::npos);
+}
