@@ -93,6 +93,7 @@ TEST_CASE("pbrt import errors: syntax, parameters and structure") {
     expect(pbrt_error("Shape \"x\\q\"\n"), "bad.pbrt: line 1", "unknown escape");
     expect(pbrt_error("Scale 1e30 1 1\nShape \"trianglemesh\" \"point3 P\" [ 1e-10 0 0 1e10 0 0 0 1 0 ]"),
            "bad.pbrt: line 2", "beyond +-1e18");
+    expect(pbrt_error("\n\nInclude \"" + kImportFixtures.string() + "\"\n"), "bad.pbrt: line 3", "is a directory");
     // Including itself (the depth guard is the same path with a longer chain).
     expect(pbrt_error("\nInclude \"bad.pbrt\"\n"), "bad.pbrt: line 2", "include cycle");
     PbrtLimits shallow;

@@ -66,7 +66,13 @@ public:
                 for (std::size_t j = i; j < include_stack_.size(); ++j) cycle += include_stack_[j].string() + " -> ";
                 fail_from("include cycle: " + cycle + canonical.string());
             }
-        std::vector<std::uint8_t> bytes = read_file_bytes(file);
+        std::vector<std::uint8_t> bytes;
+        try {
+            bytes = read_file_bytes(file);
+        } catch (const InputError& e) {
+            if (!from) throw;
+            fail_from(std::string("Include: ") + e.what());  // a directory, a device, unreadable
+        }
         bytes_ += bytes.size();
         if (bytes_ > limits_.max_bytes)
             fail_from("more than " + std::to_string(limits_.max_bytes) + " bytes read over all included files");
