@@ -71,15 +71,14 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
         }
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
-            if (face.mNumIndices != 3) continue;  // points and lines: no surface
-            std::array<std::uint32_t, 3> tri{};
-            for (int k = 0; k < 3; ++k) {
+            if (face.mNumIndices < 3) continue;  // points and lines: no surface
+            for (unsigned k = 0; k < face.mNumIndices; ++k)
                 if (face.mIndices[k] >= mesh.mNumVertices)
                     throw InputError(file + ": mesh \"" + std::string(mesh.mName.C_Str()) + "\" face " +
                                      std::to_string(f) + " refers to a missing vertex");
-                tri[static_cast<std::size_t>(k)] = base + face.mIndices[k];
-            }
-            out.triangles.push_back(tri);
+            // Fan triangulation (v0, vi, vi+1), as for OBJ faces.
+            for (unsigned k = 1; k + 1 < face.mNumIndices; ++k)
+                out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[k], base + face.mIndices[k + 1]});
         }
     }
     for (unsigned c = 0; c < node.mNumChildren; ++c) add_node(scene, *node.mChildren[c], m, out, file, depth + 1);
@@ -107,7 +106,9 @@ TriangleMesh load_assimp_mesh(const std::filesystem::path& file, std::uint64_t m
     Assimp::Importer importer;
     auto* io = new GuardedIO(max_bytes);  // owned by the importer
     importer.SetIOHandler(io);
-    const aiScene* scene = importer.ReadFile(name, aiProcess_Triangulate);
+    // No post-processing: assimp 5.2's triangulation aborts (ai_assert) on
+    // some malformed faces; polygons are fan-triangulated in add_node.
+    const aiScene* scene = importer.ReadFile(name, 0);
     if (!scene || !scene->mRootNode) {
         std::string err = io->refusal().empty() ? importer.GetErrorString() : io->refusal();
         while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();

@@ -70,7 +70,7 @@ struct PbrtScene {
 
 // glTF 2.0 (.gltf with embedded or external buffers, .glb) and PLY (ASCII or
 // binary) meshes through assimp: every triangle of every mesh node, node
-// transforms applied; points and lines are dropped, polygons triangulated.
+// transforms applied; points and lines are dropped, polygons fan-triangulated.
 // The file (and every buffer it names) must be under `max_bytes`; a PLY
 // header is checked first (counts against the file size, errors by line).
 [[nodiscard]] TriangleMesh load_assimp_mesh(const std::filesystem::path& file,

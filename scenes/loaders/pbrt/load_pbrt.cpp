@@ -135,16 +135,22 @@ private:
         stack_.pop_back();
     }
 
+    // Existence without exceptions (a name too long for the file system is "no such file").
+    static bool exists(const fs::path& p) {
+        std::error_code ec;
+        return fs::exists(p, ec);
+    }
+
     fs::path resolve(Tokenizer& t, std::size_t line, const fs::path& including, const std::string& name) {
         const fs::path given(name);
         if (name.empty()) t.fail(line, "empty file name");
         if (given.is_absolute()) {
-            if (!fs::exists(given)) t.fail(line, "no such file: " + name);
+            if (!exists(given)) t.fail(line, "no such file: " + name);
             return given;
         }
         const fs::path beside = including.parent_path() / given, main = main_dir_ / given;
-        if (fs::exists(beside)) return beside;
-        if (fs::exists(main)) return main;
+        if (exists(beside)) return beside;
+        if (exists(main)) return main;
         t.fail(line, "no such file: \"" + name + "\" (tried " + beside.string() +
                          (main == beside ? std::string() : " and " + main.string()) + ")");
     }
