@@ -94,6 +94,16 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
     if (end == std::string_view::npos) throw InputError(file + ": no \"end_header\" line");
     std::size_t body = all.find('\n', end + 1);
     body = body == std::string_view::npos ? all.size() : body + 1;
+    // The header is plain text as assimp expects it: no '#' (TextLines would
+    // take it for a comment) and no control characters but tab and CR.
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < body; ++i) {
+        const auto c = static_cast<unsigned char>(all[i]);
+        if (c == '\n') ++line;
+        else if (c == '#' || (c < 32 && c != '\t' && c != '\r') || c >= 127)
+            throw InputError(file + ": line " + std::to_string(line) + ": unexpected character " + std::to_string(c) +
+                             " in the PLY header");
+    }
     TextLines header(std::string(all.substr(0, body)), file);
     std::string format;
     std::vector<Element> elements;
@@ -136,12 +146,31 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
             p.name = std::string(t.back());
             elements.back().properties.push_back(std::move(p));
         } else if (t[0] == "end_header") {
+            if (t.size() != 1) header.fail("expected \"end_header\" alone");
             break;
         } else {
             header.fail("unknown header line \"" + std::string(t[0]) + "\"");
         }
     }
     if (format.empty()) throw InputError(file + ": line 2: no \"format\" line in the header");
+    // The geometry assimp reads: vertex x y z (scalars), faces as a list.
+    const Element* vertex = nullptr;
+    for (const Element& e : elements) {
+        if (e.name == "vertex" && vertex) throw InputError(file + ": line " + std::to_string(e.line) + ": a second vertex element");
+        if (e.name == "vertex") vertex = &e;
+        for (const char* axis : {"x", "y", "z"}) {
+            if (e.name != "vertex") break;
+            std::size_t found = 0;
+            for (const Property& p : e.properties) found += p.name == axis && !p.count_bytes ? 1 : 0;
+            if (found != 1)
+                throw InputError(file + ": line " + std::to_string(e.line) + ": element vertex needs one scalar property " +
+                                 axis);
+        }
+        for (const Property& p : e.properties)
+            if (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index") && (!p.count_bytes || p.item_float))
+                throw InputError(file + ": line " + std::to_string(e.line) + ": face " + p.name + " must be a list of integers");
+    }
+    if (!vertex) throw InputError(file + ": no \"element vertex\" in the header");
     const unsigned long long left = all.size() - body;
     unsigned long long need = 0;
     for (const Element& e : elements) {
