@@ -119,11 +119,14 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
             if (t.size() != 3 || (t[1] != "ascii" && t[1] != "binary_little_endian" && t[1] != "binary_big_endian") ||
                 t[2] != "1.0")
                 header.fail("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+            if (!format.empty()) header.fail("a second \"format\" line");
             format = t[1];
         } else if (t[0] == "element") {
             if (t.size() != 3) header.fail("expected \"element <name> <count>\"");
             const auto n = header.number<long long>(2, "element count");
             if (n < 0) header.fail("negative element count");
+            for (const Element& e : elements)
+                if (e.name == t[1]) header.fail("a second element \"" + e.name + "\"");
             elements.push_back({std::string(t[1]), static_cast<unsigned long long>(n), header.line_number(), {}});
         } else if (t[0] == "property") {
             if (elements.empty()) header.fail("property before any element");
@@ -187,6 +190,13 @@ void check_ply(const std::vector<std::uint8_t>& bytes, const std::string& file) 
             throw InputError(file + ": line " + std::to_string(e.line) + ": the elements up to " + e.name +
                              " need at least " + std::to_string(need) + " bytes, the body has " + std::to_string(left));
     }
+    // Faces are what the simulator needs (and assimp 5.2 leaks its mesh on
+    // files without a face index list, found by fuzz_ply).
+    bool faces = false;
+    for (const Element& e : elements)
+        for (const Property& p : e.properties)
+            faces = faces || (e.name == "face" && (p.name == "vertex_indices" || p.name == "vertex_index"));
+    if (!faces) throw InputError(file + ": no \"element face\" with a \"vertex_indices\" list in the header");
     if (format != "ascii") return check_binary_body(all, body, elements, format == "binary_big_endian", file);
 
     // ASCII body: one item per line, each field a number, list lengths as given.

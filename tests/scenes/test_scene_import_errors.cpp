@@ -124,6 +124,13 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
     expect(ply_error("ply\nformat ascii 1.0\n#element vertex 1\nend_header\n"), "bad.ply: line 3",
            "unexpected character 35 in the PLY header");
     expect(ply_error("ply\nformat ascii 1.0\nend_header\n"), "bad.ply", "no \"element vertex\" in the header");
+    expect(ply_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                     "end_header\n0 0 0\n"),
+           "bad.ply", "no \"element face\" with a \"vertex_indices\" list");
+    expect(ply_error("ply\nformat ascii 1.0\nformat binary_little_endian 1.0\nend_header\n"), "bad.ply: line 3",
+           "a second \"format\" line");
+    expect(ply_error(header.substr(0, header.size() - 11) + "element face 1\nend_header\n"), "bad.ply: line 9",
+           "a second element \"face\"");
     expect(ply_error("ply\nformat ascii 2.0\nend_header\n"), "bad.ply: line 2", "expected \"format ascii");
     expect(ply_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n0\n"),
            "bad.ply: line 4", "unknown property type \"float128\"");
