@@ -110,6 +110,8 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
         return error_of([&] { (void)load_assimp_mesh(path); });
     };
     CHECK(ply_error(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n") == "(no error)");
+    expect(ply_error(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n"), "bad.ply: line 14", "text after the last element");
+    expect(ply_error(header + "0 0 0\n1 \v0 0\n0 1 0\n3 0 1 2\n"), "bad.ply: line 11", "unexpected character 11");
     expect(ply_error("plx\n"), "bad.ply: line 1", "not a PLY file");
     expect(ply_error(header + "0 0 0\n1 0 0 5\n0 1 0\n3 0 1 2\n"), "bad.ply: line 11", "expected 3 fields");
     expect(ply_error(header + "0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n"), "bad.ply: line 11", "expected a number for z");
