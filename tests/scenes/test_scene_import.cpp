@@ -75,6 +75,14 @@ Shape "curve" "string type" "ribbon" "point3 P" [ 0 0 0  1 0 0  2 0 0  3 0 0 ] "
     CHECK(near(s.curves.points[8], Vec3(2, 1.5f, 0)));
     CHECK(near(s.curves.points[9], Vec3(3, 1, 0)));
     CHECK(s.curves.radii.back() == doctest::Approx(0.5));  // pbrt's default width 1
+
+    // A curved cubic Bezier: its samples at t = 0, 1/3, 2/3, 1 are bspline::bezier_point's.
+    const auto bent = scratch_file("bezier.pbrt", "Shape \"curve\" \"point3 P\" [ 0 0 0  1 3 0  3 -2 1  4 1 2 ]\n");
+    const PbrtScene b = load_pbrt(bent);
+    PhantomCurve c;
+    c.cp = {Vec3(0, 0, 0), Vec3(1, 3, 0), Vec3(3, -2, 1), Vec3(4, 1, 2)};
+    REQUIRE(b.curves.points.size() == 4);
+    for (int k = 0; k < 4; ++k) CHECK(near(b.curves.points[k], bspline::bezier_point(c, k / 3.0f), 1e-5f));
 }
 
 TEST_CASE("pbrt import: Rotate, Transform, ConcatTransform, Identity, stacks and widths") {
