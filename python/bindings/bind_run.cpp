@@ -34,15 +34,17 @@ WorkLimits limits_from(const py::dict& d) {
 
 PlanHandle make_plan(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
                      const py::dict& limits) {
-    return {std::make_shared<const RunPlan>(plan_runs(parse_json_text(text, file), file, sets, limits_from(limits)))};
+    return {std::make_shared<const RunPlan>(
+        plan_runs(parse_json_text(text, file), file, sets, limits_from(limits), sweep_key_order(text, sets)))};
 }
 
 // The outputs the CLI writes for one run: report.json and, unless the config
-// turns them off, the render, heat maps and ratio maps.
+// turns them off, the render, heat maps, ratio maps and .npy arrays.
 void write_outputs(const RunResult& r, const std::string& dir) {
     std::filesystem::create_directories(dir);
     write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
     if (r.config.output.images) write_images(r, dir);
+    if (r.config.output.arrays) (void)write_arrays(r, dir);
     (void)write_break_even_maps(r, dir);
 }
 

@@ -158,12 +158,18 @@ def load_report(path):
 
 
 def load_reports(directory):
-    """Every report of a CLI output directory: its report.json (one run), or
-    the sweep points' `<index>_<label>/report.json` in index order."""
+    """Every report of a CLI output directory: its report.json (one run, or a
+    sweep's combined report with every point), else the sweep points'
+    `<index>_<label>/report.json` in index order."""
     directory = os.fspath(directory)
     single = os.path.join(directory, "report.json")
     if os.path.isfile(single):
-        return [load_report(single)]
+        with open(single) as f:
+            data = json.load(f)
+        if "points" not in data:
+            return [Report(data, single)]
+        # A sweep's combined report.json: its points' reports, in sweep order.
+        return [Report(p["report"], os.path.join(directory, p["dir"], "report.json")) for p in data["points"]]
 
     def index(path):
         head = os.path.basename(os.path.dirname(path)).split("_")[0]

@@ -61,8 +61,10 @@ def test_dict_config_names_the_key():
     with open(TINY) as f:
         config = json.load(f)
     config["workload"]["spp"] = -4
+    # Its preset paths are relative to tests/configs: without `base`, name them.
+    unanchored = dict(config, cost=["turing-guess"], memory="memory-optix7")
     with pytest.raises(rtcsim.InputError, match=r"^<dict>: /workload/spp: expected a positive integer, got -4$"):
-        rtcsim.run(config, progress=False)
+        rtcsim.run(unanchored, progress=False)
     # `base` names the config in messages and anchors its relative paths.
     with pytest.raises(rtcsim.InputError, match=r"^tests/configs/tiny.json: /workload/spp: "):
         rtcsim.run(config, progress=False, base=TINY)

@@ -8,7 +8,7 @@ import rtcsim
 from conftest import ROOT, TINY
 
 SMALL = ["--set", "workload.width=8", "--set", "workload.height=8", "--set", "output.images=false"]
-CALIBRATED = ["--set", 'cost=["../../configs/hw/turing-calibrated.json"]']
+CALIBRATED = ["--set", 'cost=["turing-calibrated"]']
 
 
 def test_make_reproduction(simulate, tmp_path):
@@ -16,8 +16,8 @@ def test_make_reproduction(simulate, tmp_path):
     steps = [
         ("configs/runs/fig3_bundles.json", "fig3", ["--set", "workload.spp=1"]),
         (TINY, "hair", CALIBRATED + ["--set", 'sweep={"primitives.kind": ["capsule", "phantom"]}']),
-        (TINY, "memory", CALIBRATED + ["--set", 'sweep={"memory": ["configs/hw/memory-optix7.json", '
-                                                '"configs/hw/memory-dxr.json"]}']),
+        (TINY, "memory", CALIBRATED + ["--set", 'sweep={"memory": ["memory-optix7", '
+                                                '"memory-dxr"]}']),
     ]
     for config, name, extra in steps:
         cli = simulate(config, "--quiet", "--out", runs / name, *SMALL, *extra)

@@ -3,6 +3,9 @@
 #include "core/input_error.h"
 #include "sim/config/run_config.h"
 #include "sim/util/json_reader.h"
+#include "sim/util/paths.h"
+
+#include <filesystem>
 
 #include <stdexcept>
 
@@ -52,12 +55,27 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
         // Start from the named preset (so refitting does not start from its own
         // previous output), else from the run's primary cost preset.
         const CostModel start = desc.start.empty() ? runs.front()->costs.front()
-                                                   : load_cost_model(resolve_config_path(desc.start, file));
+                                                   : load_cost_model(resolve_preset(desc.start, file, "/calibrate/start"));
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
     } catch (const std::invalid_argument& e) {
         throw InputError(file + ": /calibrate: " + e.what());
     }
     return out;
+}
+
+std::string calibrate_output_path(const nlohmann::json& config, const std::string& file, bool force) {
+    if (!config.is_object() || !config.contains("calibrate") || !config["calibrate"].is_object()) return "";
+    const nlohmann::json& block = config["calibrate"];
+    if (!block.contains("output") || !block["output"].is_string() || block["output"].get<std::string>().empty())
+        return "";
+    const std::string path = config_relative_path(block["output"].get<std::string>(), file);
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !force)
+        throw InputError(file + ": /calibrate/output: " + path + " exists" +
+                         (in_preset_dir(path) ? " and is a shipped preset" : "") +
+                         "; not overwriting it (the fitted preset is written to calibrated_preset.json in the "
+                         "output directory anyway; --force overwrites " + path + ")");
+    return path;
 }
 
 }  // namespace rtc

@@ -36,4 +36,10 @@ struct CalibrationOutcome {
                                                    const nlohmann::json& config, const std::string& file,
                                                    const WarpTraceSource& warps);
 
+// Where `simulate calibrate` writes the fitted preset besides the output
+// directory: the block's `output`, relative to the config file; "" when it has
+// none. Throws InputError naming /calibrate/output when that file exists
+// (a shipped or installed preset above all) and `force` is false.
+[[nodiscard]] std::string calibrate_output_path(const nlohmann::json& config, const std::string& file, bool force);
+
 }  // namespace rtc

@@ -3,6 +3,8 @@
 #include "core/input_error.h"
 #include "sim/methods/method.h"
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 
 #include <charconv>
@@ -39,75 +41,138 @@ usage:
   simulate calibrate CONFIG.json [options]  fit cost parameters to target speedups
   simulate --help | --version
 
-options:
-  --out DIR             output directory (default: out/<config name>/)
+options (--opt value or --opt=value):
+  --out DIR             output directory (default: out/<config name>/); it must be
+                        missing or empty, see --force
   --threads N           worker threads (default: all cores; results do not depend on it)
   --set key.path=value  override any config key by its path, e.g.
                         --set workload.spp=1 --set scene.tilt_deg=30
-                        --set 'methods=["obb"]'  (value parsed as JSON, else a string)
-  --quiet               no effective-config echo, no progress bars
+                        --set 'methods=["obb"]'  (value parsed as JSON, else a string);
+                        paths set this way are relative to the config file, like
+                        every path in it
+  --quiet, -q           no effective-config echo, no progress bars
   --max-rays N          refuse runs estimated to trace more than N rays in all
                         (every method and sweep point; default 1e10)
   --max-memory SIZE     refuse runs estimated to need more memory, e.g. 8G or
                         512M (default: 3/4 of physical memory)
-  --force               run even above those ceilings (and sweeps above 10,000 points)
+  --force               go on anyway: run above those ceilings (and sweeps above
+                        10,000 points), empty an output directory an earlier run
+                        of simulate wrote, let calibrate overwrite its `output`
+
+paths and presets:
+  Every path in a config is relative to that config file. Presets are named by
+  name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
+  $RTCSIM_PRESET_DIR, else <bin>/../share/rtcsim/hw (installed), else the
+  install prefix's share/rtcsim/hw, else the source tree's configs/hw; or by
+  a path (with a '/' or ending in .json). Details: configs/README.md.
+
+examples (from the source tree; installed configs are in <prefix>/share/rtcsim/runs):
+  simulate configs/runs/quickstart.json
+  simulate configs/runs/quickstart.json --out=out/quick-1spp --set workload.spp=1 --threads=2
+  simulate configs/runs/fig3_bundles.json --set workload.width=200 --set workload.height=200
+  simulate calibrate configs/runs/fig3_bundles.json --out out/fig3-fit
 
 configs: configs/runs/*.json, keys documented in configs/README.md
-outputs: report.json, summary.csv, summary.md, *.png heat maps, *.svg plots
+outputs: report.json (with provenance: version, commit, effective config,
+         presets, threads, date, command line), summary.csv, summary.md,
+         *.png heat maps, *.svg plots
+
 )" + methods_help();
 }
 
+namespace {
+
+// CLI11 (2.1) takes the next argument as an option's value even when it is
+// another option (`--out --quiet` would write into ./--quiet): refuse values
+// that start with "--" or are one of our short flags.
+void require_value(const std::string& value, const char* option) {
+    if (value.rfind("--", 0) == 0 || value == "-q" || value == "-h")
+        throw InputError(std::string("simulate: ") + option + " needs a value (got the option " + value +
+                         "; see --help)");
+}
+
+// CLI11's messages, reworded to name the option in the program's style.
+[[noreturn]] void rethrow(const CLI::ParseError& e) {
+    std::string what = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
+        const auto colon = what.rfind(": ");
+        const std::string extra = colon == std::string::npos ? what : what.substr(colon + 2);
+        if (!extra.empty() && extra[0] == '-') throw InputError("simulate: unknown option " + extra + " (see --help)");
+        throw InputError("simulate: unexpected argument " + extra + " (see --help)");
+    }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) != nullptr) {
+        const auto colon = what.find(':');
+        throw InputError("simulate: " + what.substr(0, colon) + " needs a value (see --help)");
+    }
+    throw InputError("simulate: " + what + " (see --help)");
+}
+
+}  // namespace
+
 CliOptions parse_cli(const std::vector<std::string>& args) {
     CliOptions o;
-    const auto value = [&](std::size_t& i, const std::string& flag) -> const std::string& {
-        if (i + 1 >= args.size()) throw InputError("simulate: " + flag + " needs a value (see --help)");
-        return args[++i];
-    };
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--help" || a == "-h") {
-            o.help = true;
-        } else if (a == "--version") {
-            o.version = true;
-        } else if (a == "--quiet" || a == "-q") {
-            o.quiet = true;
-        } else if (a == "--out") {
-            o.out = value(i, a);
-        } else if (a == "--threads") {
-            const std::string& v = value(i, a);
-            unsigned n = 0;
-            const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
-            if (ec != std::errc() || p != v.data() + v.size() || n == 0 || n > 1024)
-                throw InputError("simulate: --threads: expected a positive integer, got \"" + v + "\"");
-            o.threads = n;
-        } else if (a == "--max-rays") {
-            const std::string& v = value(i, a);
-            double n = 0.0;
-            const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
-            if (ec != std::errc() || p != v.data() + v.size() || !(n >= 1.0) || !std::isfinite(n))
-                throw InputError("simulate: --max-rays: expected a number >= 1 such as 1e9, got \"" + v + "\"");
-            o.limits.max_rays = n;
-        } else if (a == "--max-memory") {
-            const std::string& v = value(i, a);
-            const std::optional<double> n = parse_byte_size(v);
-            if (!n) throw InputError("simulate: --max-memory: expected a size such as 8G or 512M, got \"" + v + "\"");
-            o.limits.max_memory = *n;
-        } else if (a == "--force") {
-            o.limits.force = true;
-        } else if (a == "--set") {
-            o.sets.push_back(value(i, a));
-        } else if (a.rfind("--set=", 0) == 0) {
-            o.sets.push_back(a.substr(6));
-        } else if (a == "calibrate" && o.config.empty() && !o.calibrate) {
-            o.calibrate = true;
-        } else if (!a.empty() && a[0] == '-') {
-            throw InputError("simulate: unknown option " + a + " (see --help)");
-        } else if (o.config.empty()) {
-            o.config = a;
-        } else {
-            throw InputError("simulate: more than one config given (" + o.config + ", " + a + ")");
-        }
+    o.command_line.push_back("simulate");
+    o.command_line.insert(o.command_line.end(), args.begin(), args.end());
+    CLI::App app{"simulate"};
+    app.set_help_flag();  // cli_help() is the help text
+    std::string out, threads, max_rays, max_memory;
+    std::vector<std::string> positional;
+    app.add_flag("-h,--help", o.help);
+    app.add_flag("--version", o.version);
+    app.add_flag("-q,--quiet", o.quiet);
+    app.add_flag("--force", o.limits.force);
+    // Given twice, the last value wins (as with --set, later overrides earlier).
+    for (const auto& [name, value] : {std::pair{"--out", &out}, {"--threads", &threads}, {"--max-rays", &max_rays},
+                                      {"--max-memory", &max_memory}})
+        app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    // One value per --set (a vector option would swallow the config name).
+    app.add_option("--set", o.sets)
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false);
+    app.add_option("args", positional);  // [calibrate] CONFIG.json
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        rethrow(e);
     }
+    const auto given = [&](const char* name) { return app.count(name) > 0; };
+    if (given("--out")) {
+        require_value(out, "--out");
+        if (out.empty()) throw InputError("simulate: --out needs a value (see --help)");
+        o.out = out;
+    }
+    for (const std::string& s : o.sets) require_value(s, "--set");
+    if (given("--threads")) {
+        require_value(threads, "--threads");
+        unsigned n = 0;
+        const auto [p, ec] = std::from_chars(threads.data(), threads.data() + threads.size(), n);
+        if (ec != std::errc() || p != threads.data() + threads.size() || n == 0 || n > 1024)
+            throw InputError("simulate: --threads: expected a positive integer, got \"" + threads + "\"");
+        o.threads = n;
+    }
+    if (given("--max-rays")) {
+        require_value(max_rays, "--max-rays");
+        double n = 0.0;
+        const auto [p, ec] = std::from_chars(max_rays.data(), max_rays.data() + max_rays.size(), n);
+        if (ec != std::errc() || p != max_rays.data() + max_rays.size() || !(n >= 1.0) || !std::isfinite(n))
+            throw InputError("simulate: --max-rays: expected a number >= 1 such as 1e9, got \"" + max_rays + "\"");
+        o.limits.max_rays = n;
+    }
+    if (given("--max-memory")) {
+        require_value(max_memory, "--max-memory");
+        const std::optional<double> n = parse_byte_size(max_memory);
+        if (!n) throw InputError("simulate: --max-memory: expected a size such as 8G or 512M, got \"" + max_memory + "\"");
+        o.limits.max_memory = *n;
+    }
+    if (!positional.empty() && positional.front() == "calibrate") {
+        o.calibrate = true;
+        positional.erase(positional.begin());
+    }
+    if (positional.size() > 1)
+        throw InputError("simulate: more than one config given (" + positional[0] + ", " + positional[1] + ")");
+    if (!positional.empty()) o.config = positional.front();
     if (!o.help && !o.version && o.config.empty())
         throw InputError("simulate: no config given (usage: simulate CONFIG.json [options]; see --help)");
     return o;

@@ -19,6 +19,9 @@ struct CliOptions {
     std::vector<std::string> sets;   // key.path=value overrides, in order
     bool quiet = false;
     WorkLimits limits;               // --max-rays, --max-memory, --force
+    // --force also empties an output directory an earlier run wrote and lets
+    // calibrate overwrite an existing preset file: one flag for "I know, go on".
+    std::vector<std::string> command_line;  // "simulate" and the arguments (provenance)
 };
 
 // Throws InputError with a one-line message on bad arguments.

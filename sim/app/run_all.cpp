@@ -1,6 +1,8 @@
 #include "sim/app/run_all.h"
 
 #include "sim/app/calibrate_runs.h"
+#include "sim/app/output_dir.h"
+#include "sim/app/provenance.h"
 #include "sim/calibrate/calibrate_report.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
@@ -31,22 +33,10 @@ std::string sanitize(const std::string& label) {
     return s.empty() ? "run" : s;
 }
 
-void make_dir(const std::string& dir) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw InputError(dir + ": cannot create output directory" + (ec ? " (" + ec.message() + ")" : ""));
-    const std::string probe = (std::filesystem::path(dir) / ".write_test").string();
-    std::FILE* f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw InputError(dir + ": output directory is not writable");
-    std::fclose(f);
-    std::filesystem::remove(probe, ec);
-}
-
 // `simulate calibrate`: fit the config's chosen costs to its target speedups
 // by re-pricing the counts each run recorded (no tracing again).
 void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
-                    const std::string& file, const std::string& out, bool quiet) {
+                    const std::string& file, const std::string& out, bool quiet, bool force) {
     std::vector<RunResult*> pointers;
     for (RunResult& r : runs) pointers.push_back(&r);
     // The runs are done with their waves: move them into the fit.
@@ -58,8 +48,9 @@ void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
     const std::string preset = calibrated_preset_json(fit.result);
     write_text_file((std::filesystem::path(out) / "calibrated_preset.json").string(), preset);
     if (!fit.desc.output.empty()) {
-        write_text_file(fit.desc.output, preset);
-        if (!quiet) std::cerr << "fitted preset written to " << fit.desc.output << "\n";
+        const std::string path = calibrate_output_path(config, file, force);
+        write_text_file(path, preset);
+        if (!quiet) std::cerr << "fitted preset written to " << path << "\n";
     }
     std::cout << "\n" << report;
     if (!fit.skipped.empty() && !quiet)
@@ -69,14 +60,14 @@ void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
 }  // namespace
 
 RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vector<std::string>& sets,
-                  const WorkLimits& limits) {
+                  const WorkLimits& limits, const std::vector<std::string>& sweep_order) {
     if (!config.is_object()) throw InputError(file + ": /: expected a JSON object");
     RunPlan plan;
     plan.file = file;
     plan.limits = limits;
     for (const std::string& s : sets) apply_set(config, s, file);
     (void)sweep_point_count(config, file, limits);  // before expanding it
-    plan.points = expand_sweep(config, file);
+    plan.points = expand_sweep(config, file, sweep_order);
     // Parse every point before any work, so a bad value fails in a second.
     std::vector<WorkEstimate> estimates;
     for (const SweepPoint& p : plan.points) {
@@ -94,18 +85,33 @@ RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context) {
     RunResult r = run_simulation(plan.parsed.at(i), plan.points.at(i).config, context);
     r.sweep_values = plan.points[i].values;
     r.sweep_label = plan.points[i].label;
+    r.provenance = provenance_json(r, context.threads, plan.command_line);
+    return r;
+}
+
+std::optional<RunResult> reprice_point(const RunPlan& plan, std::size_t i, const RunResult& traced,
+                                       unsigned threads) {
+    std::optional<RunResult> r = reprice_run(traced, plan.parsed.at(i), plan.points.at(i).config);
+    if (!r) return r;
+    r->sweep_values = plan.points[i].values;
+    r->sweep_label = plan.points[i].label;
+    r->provenance = provenance_json(*r, threads, plan.command_line);
     return r;
 }
 
 int run_all(const CliOptions& cli) {
-    const RunPlan plan =
-        plan_runs(parse_json_text(read_text_file(cli.config), cli.config), cli.config, cli.sets, cli.limits);
+    const std::string text = read_text_file(cli.config);
+    RunPlan plan = plan_runs(parse_json_text(text, cli.config), cli.config, cli.sets, cli.limits,
+                             sweep_key_order(text, cli.sets));
+    plan.command_line = cli.command_line;
     const nlohmann::json& config = plan.config;
     const std::vector<SweepPoint>& points = plan.points;
     const std::vector<RunConfig>& parsed = plan.parsed;
     const WorkEstimate& work = plan.work;
+    // Before any work: a calibrate output that would overwrite a file.
+    if (cli.calibrate) (void)calibrate_output_path(config, cli.config, cli.limits.force);
     const std::string out = cli.out ? *cli.out : "out/" + parsed.front().name;
-    make_dir(out);
+    prepare_output_dir(out, cli.limits.force);
     if (!cli.quiet) {
         std::cerr << "simulate " << cli.config << " -> " << out << "\neffective configuration:\n"
                   << config.dump(2) << "\n";
@@ -115,6 +121,10 @@ int run_all(const CliOptions& cli) {
                   << format_bytes(work.memory_bytes) << " of memory\n";
     }
     std::vector<RunResult> runs;
+    // The last point in full (per-pixel data too) while the next point has
+    // the same trace: it is re-priced from it instead of traced again.
+    std::optional<RunResult> traced;
+    std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
     for (std::size_t i = 0; i < points.size(); ++i) {
         const std::string dir = points.size() == 1
                                     ? out
@@ -123,30 +133,37 @@ int run_all(const CliOptions& cli) {
         make_dir(dir);
         if (!cli.quiet && points.size() > 1)
             std::cerr << "[" << i + 1 << "/" << points.size() << "] " << points[i].label << "\n";
+        std::optional<RunResult> repriced;
+        if (traced) repriced = reprice_point(plan, i, *traced, cli.threads);
+        if (repriced && !cli.quiet) std::cerr << "same trace as the previous point: re-priced, not traced\n";
         RunContext ctx;
         ctx.threads = cli.threads;
         ctx.quiet = cli.quiet;
         ctx.record_warps = cli.calibrate;
         ctx.out_dir = dir;
-        RunResult r = run_point(plan, i, ctx);
+        RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         if (parsed[i].output.images) write_images(r, dir);
+        if (parsed[i].output.arrays) (void)write_arrays(r, dir);
         (void)write_break_even_maps(r, dir);
+        traced.reset();
+        // (Ray and hit files are written while tracing: such points trace.)
+        if (i + 1 < points.size() && same_trace(points[i].config, points[i + 1].config) &&
+            !parsed[i + 1].output.write_rays && !parsed[i + 1].output.write_hits)
+            traced = r;
         // Free the per-pixel data of finished points: sweeps keep only totals.
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
+            m.frame.ray_counts = {};
+            m.frame.more_pixel_warp_cycles = {};
             m.frame.radiance = {};
         }
         runs.push_back(std::move(r));
-        const Table t = summary_table(runs);
-        write_text_file((std::filesystem::path(out) / "summary.csv").string(), t.to_csv());
-        write_text_file((std::filesystem::path(out) / "summary.md").string(), t.to_markdown());
-        const Table st = speedup_table(runs);
-        write_text_file((std::filesystem::path(out) / "speedups.csv").string(), st.to_csv());
-        write_text_file((std::filesystem::path(out) / "speedups.md").string(), st.to_markdown());
+        point_dirs.push_back(points.size() == 1 ? "" : std::filesystem::path(dir).filename().string());
+        write_sweep_outputs(runs, point_dirs, out);
     }
     write_sweep_plots(runs, out);
-    if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet);
+    if (cli.calibrate) calibrate_runs(runs, config, cli.config, out, cli.quiet, cli.limits.force);
     std::cout << summary_table(runs).to_console();
     if (!cli.quiet) std::cerr << "outputs in " << out << "/\n";
     return 0;

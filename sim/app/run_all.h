@@ -26,16 +26,26 @@ struct RunPlan {
     std::vector<RunConfig> parsed;   // per point
     WorkLimits limits;               // checked here and again once each scene is loaded
     WorkEstimate work;               // over every point
+    std::vector<std::string> command_line;  // for the reports' provenance (empty: not from the CLI)
 };
 
 // Throws InputError naming `file` and the JSON path, also when the work
 // estimate exceeds `limits` (the CLI's --max-rays, --max-memory, --force).
+// `sweep_order`: the sweep keys in written order (sweep_key_order of the
+// config text), so the first key varies slowest.
 [[nodiscard]] RunPlan plan_runs(nlohmann::json config, const std::string& file,
-                                const std::vector<std::string>& sets = {}, const WorkLimits& limits = {});
+                                const std::vector<std::string>& sets = {}, const WorkLimits& limits = {},
+                                const std::vector<std::string>& sweep_order = {});
 
-// Runs point `i` of a plan under the plan's limits (its sweep values and
-// label set on the result).
+// Runs point `i` of a plan under the plan's limits (its sweep values, label
+// and provenance set on the result).
 [[nodiscard]] RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context);
+
+// Point `i` priced from `traced`, the result of another point of the plan
+// with the same trace (same_trace: only cost/memory presets differ), without
+// tracing; nullopt when it cannot be (see reprice_run).
+[[nodiscard]] std::optional<RunResult> reprice_point(const RunPlan& plan, std::size_t i, const RunResult& traced,
+                                                     unsigned threads);
 
 // Returns the process exit code. Throws InputError on bad input.
 int run_all(const CliOptions& cli);

@@ -20,7 +20,8 @@ int simulate_main(const std::vector<std::string>& args) {
             return 0;
         }
         if (cli.version) {
-            std::cout << "simulate (rtcsim) " << kVersion << "\n";
+            std::cout << "simulate (rtcsim) " << kVersion << " (commit " << git_commit()
+                      << (git_dirty() ? ", uncommitted changes" : "") << ")\n";
             return 0;
         }
         return run_all(cli);

@@ -1,6 +1,7 @@
 #include "sim/config/run_config.h"
 
 #include "sim/util/json_reader.h"
+#include "sim/util/paths.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,10 +9,7 @@
 namespace rtc {
 
 std::string resolve_config_path(const std::string& path, const std::string& file) {
-    namespace fs = std::filesystem;
-    if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
-    const fs::path beside = fs::path(file).parent_path() / path;
-    return fs::exists(beside) ? beside.string() : path;
+    return config_relative_path(path, file);
 }
 
 namespace {
@@ -116,28 +114,34 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         c.trace.phantom.program =
             *phantom_program_from_name(t.choice("phantom_program", "bracketed", {"bracketed", "paper"}));
     }
+    // Presets by name (searched in the preset directories) or by path
+    // (relative to the config file): sim/util/paths.h.
     if (r.has("cost")) {
         const nlohmann::json& cost = config["cost"];
         c.cost_presets.clear();
         if (cost.is_string()) {
-            c.cost_presets.push_back(cost.get<std::string>());
+            c.cost_presets.push_back(resolve_preset(cost.get<std::string>(), file, "/cost"));
         } else if (cost.is_array() && !cost.empty()) {
             for (std::size_t i = 0; i < cost.size(); ++i) {
+                const std::string key = "/cost/" + std::to_string(i);
                 if (!cost[i].is_string())
-                    r.fail("cost/" + std::to_string(i), "expected a preset path, got " + describe(cost[i]));
-                c.cost_presets.push_back(cost[i].get<std::string>());
+                    r.fail("cost/" + std::to_string(i), "expected a preset name or path, got " + describe(cost[i]));
+                c.cost_presets.push_back(resolve_preset(cost[i].get<std::string>(), file, key));
             }
         } else {
-            r.fail("cost", "expected a preset path or a list of them, got " + describe(cost));
+            r.fail("cost", "expected a preset name or path, or a list of them, got " + describe(cost));
         }
+    } else {
+        for (auto& p : c.cost_presets) p = resolve_preset(p, file, "/cost (default)");
     }
-    for (auto& p : c.cost_presets) p = resolve_config_path(p, file);
-    c.memory_preset = resolve_config_path(r.string("memory", c.memory_preset), file);
+    c.memory_preset = resolve_preset(r.string("memory", c.memory_preset), file,
+                                     r.has("memory") ? "/memory" : "/memory (default)");
     if (r.has("workload")) c.workload = parse_workload(r.child("workload"));
     if (r.has("output")) {
         const JsonReader o = r.child("output");
-        o.allow_only({"images", "rays", "hits"});
+        o.allow_only({"images", "arrays", "rays", "hits"});
         c.output.images = o.boolean("images", true);
+        c.output.arrays = o.boolean("arrays", true);
         c.output.write_rays = o.boolean("rays", false);
         c.output.write_hits = o.boolean("hits", false);
     }

@@ -15,6 +15,7 @@ namespace rtc {
 
 struct OutputOptions {
     bool images = true;       // render, heat maps, ratio map (PNG)
+    bool arrays = true;       // per-pixel (or per-ray) counts and cycles as .npy (docs/outputs.md)
     bool write_rays = false;  // rays.bin: every traced ray (32 B each)
     bool write_hits = false;  // hits_<method>.bin: each method's hit per ray (12 B each)
 };
@@ -43,8 +44,10 @@ struct RunConfig {
     std::string baseline = "ref";     // speedups, ratio maps and memory overheads are against it
     MethodOptions build;              // widths, bins, leaf sizes, OBB variant
     TraceOptions trace;               // IS schedule, phantom early-out
-    std::vector<std::string> cost_presets{"configs/hw/turing-guess.json"};  // first = primary
-    std::string memory_preset = "configs/hw/memory-optix7.json";
+    // Preset names or paths as given; parse_run_config resolves them into files
+    // (sim/util/paths.h: names are searched in the preset directories).
+    std::vector<std::string> cost_presets{"turing-guess"};  // first = primary
+    std::string memory_preset = "memory-optix7";
     WorkloadDesc workload;
     OutputOptions output;
     nlohmann::json calibrate;         // optional `calibrate` block (null when absent)
@@ -54,8 +57,8 @@ struct RunConfig {
 // Parses one (sweep-expanded) config. Throws InputError "<file>: <path>: ...".
 [[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file);
 
-// Resolves a path from a config: as given if it exists relative to the
-// current directory, else relative to the config file's directory.
+// Resolves a path from a config: as given if absolute, else relative to the
+// config file's directory (never the working directory).
 [[nodiscard]] std::string resolve_config_path(const std::string& path, const std::string& file);
 
 }  // namespace rtc

@@ -7,6 +7,7 @@
 #include "scenes/generators/follow_hairs.h"
 #include "scenes/generators/hair_gen.h"
 #include "scenes/loaders/loaders.h"
+#include "sim/util/paths.h"
 
 #include <cmath>
 #include <limits>
@@ -166,13 +167,12 @@ Scene file_scene(const JsonReader& j) {
 }  // namespace
 
 std::filesystem::path resolve_data_path(const JsonReader& block, std::string_view key) {
-    const std::filesystem::path given = block.string(key, std::nullopt);
+    const std::string given = block.string(key, std::nullopt);
     if (given.empty()) block.fail(key, "empty path");
-    if (given.is_absolute() || std::filesystem::exists(given)) return given;
-    const std::filesystem::path beside = std::filesystem::path(block.file()).parent_path() / given;
-    if (std::filesystem::exists(beside)) return beside;
-    block.fail(key, "no such file: " + given.string() + " (tried the current directory and " +
-                        (beside.parent_path().empty() ? std::string(".") : beside.parent_path().string()) + ")");
+    const std::filesystem::path path = config_relative_path(given, block.file());
+    if (std::filesystem::exists(path)) return path;
+    block.fail(key, "no such file: " + path.string() +
+                        (std::filesystem::path(given).is_absolute() ? "" : " (paths are relative to the config file)"));
 }
 
 Scene load_scene(const JsonReader& j) {

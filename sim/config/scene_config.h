@@ -17,9 +17,9 @@ namespace rtc {
 
 [[nodiscard]] Scene load_scene(const JsonReader& scene_block);
 
-// A data path from a config: as given if absolute or if it exists relative to
-// the current directory, else relative to the config file's directory. Throws
-// (naming `key`) if neither exists.
+// A data path from a config: as given if absolute, else relative to the
+// config file's directory (never the working directory). Throws (naming
+// `key`) if it does not exist.
 [[nodiscard]] std::filesystem::path resolve_data_path(const JsonReader& block, std::string_view key);
 
 }  // namespace rtc

@@ -3,6 +3,8 @@
 #include "core/input_error.h"
 #include "sim/util/json_reader.h"
 
+#include <algorithm>
+
 namespace rtc {
 
 namespace {
@@ -54,7 +56,31 @@ void apply_set(nlohmann::json& config, const std::string& spec, const std::strin
     set_by_path(config, key, value);
 }
 
-std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::string& file) {
+std::vector<std::string> sweep_key_order(const std::string& config_text, const std::vector<std::string>& sets) {
+    std::vector<std::string> order;
+    const nlohmann::ordered_json text = nlohmann::ordered_json::parse(config_text, nullptr, false);
+    if (text.is_object() && text.contains("sweep") && text["sweep"].is_object())
+        for (const auto& [key, values] : text["sweep"].items()) order.push_back(key);
+    for (const std::string& spec : sets) {
+        const auto eq = spec.find('=');
+        if (eq == std::string::npos) continue;
+        const std::vector<std::string> path = split_path(spec.substr(0, eq));
+        if (path.empty() || path[0] != "sweep") continue;
+        if (path.size() == 1) {
+            order.clear();
+            const nlohmann::ordered_json v = nlohmann::ordered_json::parse(spec.substr(eq + 1), nullptr, false);
+            if (v.is_object())
+                for (const auto& [key, values] : v.items()) order.push_back(key);
+            continue;
+        }
+        const std::string& key = path[1];
+        if (std::find(order.begin(), order.end(), key) == order.end()) order.push_back(key);
+    }
+    return order;
+}
+
+std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::string& file,
+                                     const std::vector<std::string>& key_order) {
     nlohmann::json base = config;
     if (!base.is_object() || !base.contains("sweep")) return {{base, nlohmann::json::object(), ""}};
     const nlohmann::json sweep = base["sweep"];
@@ -67,6 +93,11 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
             r.fail(key, "expected a non-empty list of values, got " + describe(values));
         axes.emplace_back(key, values);
     }
+    // First key slowest, in the written order (std::stable_sort keeps the rest alphabetical).
+    const auto rank = [&](const std::string& key) {
+        return static_cast<std::size_t>(std::find(key_order.begin(), key_order.end(), key) - key_order.begin());
+    };
+    std::stable_sort(axes.begin(), axes.end(), [&](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
     std::vector<SweepPoint> points;
     std::vector<std::size_t> index(axes.size(), 0);
     for (;;) {

@@ -28,9 +28,18 @@ struct SweepPoint {
     std::string label;       // "scene.count=1000 scene.tilt_deg=45", or "" for a single run
 };
 
-// Expands the `sweep` block (if any) into points, in a fixed order (the first
-// key varies slowest). Errors name `file` and the sweep key.
-[[nodiscard]] std::vector<SweepPoint> expand_sweep(const nlohmann::json& config,
-                                                   const std::string& file);
+// Expands the `sweep` block (if any) into points: the first key varies
+// slowest. nlohmann::json keeps object keys sorted, so the keys' order in the
+// text is passed as `key_order` (sweep_key_order); keys missing from it come
+// after, alphabetically. Errors name `file` and the sweep key.
+[[nodiscard]] std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::string& file,
+                                                   const std::vector<std::string>& key_order = {});
+
+// The sweep keys in the order they are written: in the config text, then as
+// `--set` overrides change them (`--set sweep={...}` replaces the order,
+// `--set sweep.key=[...]` appends a new key). Empty when the text is not
+// valid JSON (parse_json_text reports that).
+[[nodiscard]] std::vector<std::string> sweep_key_order(const std::string& config_text,
+                                                       const std::vector<std::string>& sets = {});
 
 }  // namespace rtc

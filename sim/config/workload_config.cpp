@@ -2,6 +2,8 @@
 // docs/workload-config.md) and its translation into camera and path options.
 #include "sim/config/workload_config.h"
 
+#include "sim/util/paths.h"
+
 #include <filesystem>
 #include <limits>
 
@@ -125,10 +127,7 @@ WorkloadDesc parse_workload(const JsonReader& r) {
                "rays");
         const std::string file = r.string("rays_file", std::nullopt);
         if (file.empty()) r.fail("rays_file", "expected a non-empty path");
-        const std::filesystem::path p(file);
-        d.rays_file = p.is_absolute()
-                          ? file
-                          : (std::filesystem::path(r.file()).parent_path() / p).lexically_normal().string();
+        d.rays_file = config_relative_path(file, r.file());
         return d;
     }
     if (r.has("rays_file")) r.fail("rays_file", "only for workload type \"rays\"");

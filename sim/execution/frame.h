@@ -32,6 +32,7 @@ struct FrameResult {
     int width = 0, height = 0;            // 0 x 0 for ray lists
     EventTotals totals;
     std::vector<RayCounts> pixel_counts;  // per pixel, summed over samples and bounces
+    std::vector<RayCounts> ray_counts;    // ray lists: per ray, in the list's order
     std::vector<Vec3> radiance;           // per pixel, mean over samples
     std::vector<Ray> rays;                // every traced ray, when recorded
     std::vector<TraceHit> hits;           // every traced ray's hit, when recorded
@@ -40,6 +41,7 @@ struct FrameResult {
     // SIMT execution (when FrameOptions::warp is set):
     std::vector<WarpTotals> warp;           // per FrameOptions::warp_presets entry
     std::vector<float> pixel_warp_cycles;   // first warp preset: per pixel, its share of its waves
+    std::vector<std::vector<float>> more_pixel_warp_cycles;  // warp presets 1, 2, ...: the same
     std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves
     std::vector<float> pixel_simt_slots;    // per pixel: rounds x W of its waves
     WarpTrace warp_trace;                   // every wave, when FrameOptions::record_warps
@@ -85,6 +87,8 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         out.height = frame.camera.height;
         out.pixel_counts.resize(static_cast<std::size_t>(out.width) * out.height);
         out.radiance.resize(out.pixel_counts.size());
+    } else {
+        out.ray_counts.resize(frame.rays.size());
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     Progress progress(fo.label, tiles, fo.progress);
@@ -119,6 +123,7 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
             for (std::size_t i = tile * kRaysPerTile; i < end; ++i) {
                 RayCounts counts;
                 trace(frame.rays[i], counts);
+                out.ray_counts[i] = counts;
                 t.totals.add(counts);
             }
         }

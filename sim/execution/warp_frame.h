@@ -52,6 +52,9 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         out.pixel_warp_cycles.assign(n, 0.0f);
         out.pixel_simt_active.assign(n, 0.0f);
         out.pixel_simt_slots.assign(n, 0.0f);
+        out.more_pixel_warp_cycles.assign(presets > 1 ? presets - 1 : 0, std::vector<float>(n, 0.0f));
+    } else {
+        out.ray_counts.resize(frame.rays.size());
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     const bool keep_rays = fo.record_rays || fo.record_hits;
@@ -81,8 +84,13 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
                 for (std::size_t p = 0; p < presets; ++p) {
                     const WavePrice price = price_wave(w, *fo.warp_presets[p], prices[thread][p]);
                     t.warp[p].add(price, w.lanes.size());
-                    if (p != 0 || !frame.from_camera) continue;
+                    if (!frame.from_camera) continue;
                     const float share = static_cast<float>(price.total() / static_cast<double>(w.lanes.size()));
+                    if (p != 0) {
+                        std::vector<float>& cycles = out.more_pixel_warp_cycles[p - 1];
+                        for (const LaneWork& l : w.lanes) cycles[l.pixel] += share;
+                        continue;
+                    }
                     for (const LaneWork& l : w.lanes) {
                         out.pixel_warp_cycles[l.pixel] += share;
                         out.pixel_simt_active[l.pixel] += static_cast<float>(price.active_lane_rounds);
@@ -143,6 +151,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
                 for (std::size_t i = w0; i < w1; ++i) {
                     RayCounts counts;
                     const TraceHit h = trace_lane(frame.rays[i], 0, 0, counts);
+                    out.ray_counts[i] = counts;
                     if (fo.record_rays) t.rays.push_back(frame.rays[i]);
                     if (fo.record_hits) t.hits.push_back(h);
                     t.totals.add(counts);

@@ -74,7 +74,11 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
     const int ly = top + 44 + static_cast<int>(g.methods.size()) * 18;
     img.fill_rect(lx, ly, 14, 12, {128, 128, 128});
     draw_text(img, lx + 36, ly + 2, "none runs", {});
-    return img;
+    if (o.scale <= 1) return img;
+    Image big(img.width * o.scale, img.height * o.scale, {255, 255, 255});
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) big.fill_rect(x * o.scale, y * o.scale, o.scale, o.scale, img.get(x, y));
+    return big;
 }
 
 }  // namespace rtc

@@ -23,6 +23,7 @@ struct BreakEvenGrid {
 struct BreakEvenOptions {
     int cell_pixels = 6;
     double full_margin = 2.0;
+    int scale = 1;  // the finished picture magnified (2: text of ~14 px, like the heat maps)
 };
 
 [[nodiscard]] Image render_break_even(const BreakEvenGrid& grid, const BreakEvenOptions& options = {});

@@ -39,8 +39,10 @@ double percentile_of(std::vector<double>& v, double p) {
 
 int auto_pixel_scale(const ScalarField& f) {
     const int longest = std::max({f.width, f.height, 1});
-    return std::clamp(256 / longest, 1, 8);
+    return std::clamp(320 / longest, 1, 8);
 }
+
+std::string number(double v) { return format_sig(v, 3); }
 
 std::vector<Tick> auto_ticks(const HeatmapScale& s) {
     return s.kind == ScaleKind::Log ? log_ticks(s.lo, s.hi) : linear_ticks(s.lo, s.hi, 6);
@@ -71,6 +73,10 @@ HeatmapScale common_scale(const std::vector<const ScalarField*>& fields, double 
     HeatmapScale s{0.0, 1.0, kind};
     if (kind == ScaleKind::Log) s = {1.0, 10.0, kind};
     if (values.empty()) return s;
+    const auto [mn, mx] = std::minmax_element(values.begin(), values.end());
+    s.data_min = *mn;
+    s.data_max = *mx;
+    s.percentile = percentile;
     s.hi = percentile_of(values, percentile);
     s.lo = kind == ScaleKind::Log ? percentile_of(values, 100.0 - percentile)
                                   : *std::min_element(values.begin(), values.end());
@@ -89,31 +95,54 @@ HeatmapScale common_scale(const std::vector<const ScalarField*>& fields, double 
 
 Heatmap render_heatmap(const ScalarField& field, const HeatmapScale& scale, const HeatmapOptions& opt) {
     check_size(field, "render_heatmap");
+    const int ts = std::max(opt.text_scale, 1);
     const int ps = opt.pixel_scale > 0 ? opt.pixel_scale : auto_pixel_scale(field);
     const int map_w = field.width * ps, map_h = field.height * ps;
     const int bar_h = std::max(map_h, kMinBarHeight);
-    const std::vector<Tick> ticks = opt.ticks.empty() ? auto_ticks(scale) : opt.ticks;
+    std::vector<Tick> ticks = opt.ticks.empty() ? auto_ticks(scale) : opt.ticks;
     bool any_missing = false;
     for (float v : field.values) any_missing = any_missing || !std::isfinite(v);
+    // Both ends of the bar are labelled (">=" / "<=" where values were
+    // clipped); inner ticks too close to an end give way.
+    const bool hi_clip = scale.clipped_high(), lo_clip = scale.clipped_low();
+    if (opt.ticks.empty()) {
+        const double min_gap = 1.2 * text_height("0", ts) / std::max(bar_h, 1);
+        std::erase_if(ticks, [&](const Tick& t) {
+            const double pos = scale_position(scale, t.value);
+            return std::isnan(pos) || pos < min_gap || pos > 1.0 - min_gap;
+        });
+        ticks.insert(ticks.begin(), {scale.lo, (lo_clip ? "<= " : "") + number(scale.lo)});
+        ticks.push_back({scale.hi, (hi_clip ? ">= " : "") + number(scale.hi)});
+    }
+    std::string caption = opt.caption;
+    if (hi_clip || lo_clip) {
+        std::string note = "colours clipped";
+        if (hi_clip)
+            note += " above " + number(scale.hi) + (scale.percentile < 100.0 ? " (" + number(scale.percentile) + "th percentile)" : "") +
+                    ", max " + number(scale.data_max);
+        if (lo_clip) note += std::string(hi_clip ? ";" : "") + " below " + number(scale.lo) + ", min " + number(scale.data_min);
+        caption += (caption.empty() ? "" : "\n") + note;
+    }
 
     int label_w = 0;
-    for (const Tick& t : ticks) label_w = std::max(label_w, text_width(t.label));
-    const int title_h = opt.title.empty() ? 0 : text_height(opt.title, 2) + 4;
-    const int bar_label_h = opt.bar_label.empty() ? 0 : text_height(opt.bar_label) + 2;
-    const int top = kMargin + title_h + bar_label_h;
-    const int body_h = std::max(map_h, bar_h) + (any_missing ? 22 : 0);
-    const int caption_h = opt.caption.empty() ? 0 : text_height(opt.caption) + 6;
+    for (const Tick& t : ticks) label_w = std::max(label_w, text_width(t.label, ts));
+    const int title_h = opt.title.empty() ? 0 : text_height(opt.title, ts) + 4 * ts;
+    const int bar_label_h = opt.bar_label.empty() ? 0 : text_height(opt.bar_label, ts) + 2 * ts;
+    const int line_h = text_height("0", ts);
+    const int top = kMargin + title_h + bar_label_h + line_h / 2;  // room for the top tick label
+    const int body_h = std::max(map_h, bar_h) + line_h / 2 + (any_missing ? 14 * ts : 0);
+    const int caption_h = caption.empty() ? 0 : text_height(caption, ts) + 6 * ts;
 
     const int bar_x = kMargin + map_w + kBarGap;
     const int ticks_right = bar_x + kBarWidth + 2 + kTickLength + 3 + label_w;
-    int width = std::max(ticks_right, bar_x + text_width(opt.bar_label)) + kMargin;
-    width = std::max({width, text_width(opt.title, 2) + 2 * kMargin, text_width(opt.caption) + 2 * kMargin});
+    int width = std::max(ticks_right, bar_x + text_width(opt.bar_label, ts)) + kMargin;
+    width = std::max({width, text_width(opt.title, ts) + 2 * kMargin, text_width(caption, ts) + 2 * kMargin});
     const int height = top + body_h + caption_h + kMargin;
 
     Heatmap out{Image(width, height, kBackground), {kMargin, top, map_w, map_h}, {bar_x + 1, top + 1, kBarWidth, bar_h}};
     Image& img = out.image;
-    if (!opt.title.empty()) draw_text(img, kMargin, kMargin, opt.title, {kInk, 2, TextAlign::Left});
-    if (!opt.bar_label.empty()) draw_text(img, bar_x, kMargin + title_h, opt.bar_label, {kInk, 1, TextAlign::Left});
+    if (!opt.title.empty()) draw_text(img, kMargin, kMargin, opt.title, {kInk, ts, TextAlign::Left});
+    if (!opt.bar_label.empty()) draw_text(img, bar_x, kMargin + title_h, opt.bar_label, {kInk, ts, TextAlign::Left});
 
     for (int y = 0; y < field.height; ++y)
         for (int x = 0; x < field.width; ++x) {
@@ -134,14 +163,14 @@ Heatmap render_heatmap(const ScalarField& field, const HeatmapScale& scale, cons
         const int y = bar.y + static_cast<int>(std::lround((1.0 - pos) * (bar.height - 1)));
         const int x0 = bar.x + bar.width + 1;
         img.fill_rect(x0, y, kTickLength, 1, kInk);
-        draw_text(img, x0 + kTickLength + 3, y - 4, t.label, {kInk, 1, TextAlign::Left});
+        draw_text(img, x0 + kTickLength + 3, y - 4 * ts, t.label, {kInk, ts, TextAlign::Left});
     }
     if (any_missing) {
-        const int y = top + std::max(map_h, bar_h) + 8;
-        img.fill_rect(bar.x, y, 12, 12, kNoDataGrey);
-        draw_text(img, bar.x + 16, y + 2, "no data", {kInk, 1, TextAlign::Left});
+        const int y = top + std::max(map_h, bar_h) + line_h / 2 + 2 * ts;
+        img.fill_rect(bar.x, y, 6 * ts, 6 * ts, kNoDataGrey);
+        draw_text(img, bar.x + 8 * ts, y, "no data", {kInk, ts, TextAlign::Left});
     }
-    if (!opt.caption.empty()) draw_text(img, kMargin, top + body_h + 6, opt.caption, {kInk, 1, TextAlign::Left});
+    if (!caption.empty()) draw_text(img, kMargin, top + body_h + 6 * ts, caption, {kInk, ts, TextAlign::Left});
     return out;
 }
 
@@ -180,8 +209,15 @@ Heatmap render_ratio_map(const ScalarField& numerator, const ScalarField& denomi
     h.caption = opt.caption;
     h.colormap = Colormap::BlueWhiteRed;
     h.pixel_scale = opt.pixel_scale;
+    h.text_scale = opt.text_scale;
     h.ticks = ratio_ticks(m);
-    return render_heatmap(r, {1.0 / m, m, ScaleKind::Log}, h);
+    HeatmapScale scale{1.0 / m, m, ScaleKind::Log};
+    for (float v : r.values) {
+        if (!std::isfinite(v)) continue;
+        if (!(scale.data_min <= v)) scale.data_min = v;
+        if (!(scale.data_max >= v)) scale.data_max = v;
+    }
+    return render_heatmap(r, scale, h);
 }
 
 }  // namespace rtc

@@ -10,6 +10,7 @@
 #include "sim/plot/image.h"
 #include "sim/plot/ticks.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,14 @@ struct HeatmapScale {
     double lo = 0.0;
     double hi = 1.0;
     ScaleKind kind = ScaleKind::Linear;
+    // What common_scale saw (NaN: unknown). Values beyond [lo, hi] are drawn
+    // in the end colours; render_heatmap then labels the bar's end ">= hi"
+    // and says in a note at which percentile and value it clipped.
+    double data_min = std::numeric_limits<double>::quiet_NaN();
+    double data_max = std::numeric_limits<double>::quiet_NaN();
+    double percentile = 100.0;
+    [[nodiscard]] bool clipped_high() const { return data_max > hi; }
+    [[nodiscard]] bool clipped_low() const { return data_min < lo; }
 };
 
 // Position of `value` on the scale, clamped to [0, 1]; NaN for no data
@@ -41,7 +50,8 @@ struct HeatmapScale {
 // One scale for several fields: hi is the `percentile` (0..100) of all
 // finite values, clipping rare outliers; lo is the minimum (linear) or the
 // (100 - percentile) percentile of the positive values (log). Degenerate or
-// empty input still gives a usable range (lo < hi).
+// empty input still gives a usable range (lo < hi). Records the data's
+// minimum, maximum and the percentile, so the map can say it clipped.
 [[nodiscard]] HeatmapScale common_scale(const std::vector<const ScalarField*>& fields,
                                         double percentile = 99.5, ScaleKind kind = ScaleKind::Linear);
 
@@ -50,8 +60,9 @@ struct HeatmapOptions {
     std::string bar_label;  // above the colour bar, e.g. "clocks / pixel"
     std::string caption;    // below the map; '\n' starts a new line
     Colormap colormap = Colormap::Viridis;
-    int pixel_scale = 0;      // integer magnification; 0 = automatic (>= ~256 px)
+    int pixel_scale = 0;      // integer magnification; 0 = automatic (>= ~320 px)
     std::vector<Tick> ticks;  // empty = automatic for the scale
+    int text_scale = 2;       // magnification of all text (the font is ~7 px at 1)
 };
 
 struct PixelRect {
@@ -78,6 +89,7 @@ struct RatioMapOptions {
     std::string caption;
     double max_ratio = 8.0;  // scale spans [1/max_ratio, max_ratio], log, centred at 1
     int pixel_scale = 0;
+    int text_scale = 2;
 };
 
 // Powers of two in [1/max_ratio, max_ratio], labelled "1/4x", "1x", "4x".

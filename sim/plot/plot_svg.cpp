@@ -1,7 +1,7 @@
 // SVG plot writer (see plot_svg.h). Both plot kinds share one frame: axes
-// fitted to the data and widened to nice tick values, grid, tick labels,
-// axis labels, title, and a legend (right of the plot area for line plots,
-// inside its top-left corner for scatter plots, whose legend is the guide only).
+// fitted to the data and widened to nice tick values (or explicit x ticks),
+// grid, tick labels, axis labels, title and subtitle, and a legend right of
+// the plot area, in as many columns as its entries need.
 #include "sim/plot/plot_svg.h"
 
 #include "core/input_error.h"
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
@@ -21,6 +22,8 @@ namespace {
 constexpr std::array<const char*, 8> kPalette{"#0072B2", "#D55E00", "#009E73", "#CC79A7",
                                               "#E69F00", "#56B4E9", "#000000", "#F0E442"};
 constexpr double kCharWidth = 7.0;  // rough width of a 12px sans-serif glyph
+constexpr std::size_t kMaxLegendChars = 44;
+constexpr double kLegendRow = 18.0;
 
 std::string num(double v) { return format_fixed(v, 2); }
 
@@ -36,12 +39,25 @@ struct Axis {
     }
 };
 
-Axis make_axis(const std::vector<double>& values, bool log) {
+Axis make_axis(const std::vector<double>& values, bool log, const std::vector<Tick>& explicit_ticks = {}) {
     Axis a;
     a.log = log;
     double lo = INFINITY, hi = -INFINITY;
     for (double v : values)
         if (usable(v, log)) lo = std::min(lo, v), hi = std::max(hi, v);
+    if (!explicit_ticks.empty()) {  // the ticks' range, padded so edge points stay whole
+        for (const Tick& t : explicit_ticks)
+            if (usable(t.value, log)) lo = std::min(lo, t.value), hi = std::max(hi, t.value), a.ticks.push_back(t);
+        if (!(lo <= hi)) lo = log ? 1.0 : 0.0, hi = log ? 10.0 : 1.0;
+        if (log) {
+            const double pad = std::pow(10.0, std::max(0.05 * std::log10(hi / lo), 0.1));
+            a.lo = lo / pad, a.hi = hi * pad;
+        } else {
+            const double pad = hi > lo ? 0.06 * (hi - lo) : 0.5;
+            a.lo = lo - pad, a.hi = hi + pad;
+        }
+        return a;
+    }
     if (!(lo <= hi)) lo = log ? 1.0 : 0.0, hi = log ? 10.0 : 1.0;
     if (lo == hi) {
         if (log) lo /= 2.0, hi *= 2.0;
@@ -53,11 +69,12 @@ Axis make_axis(const std::vector<double>& values, bool log) {
         a.hi = std::pow(10.0, std::max(l1, l0 + 1.0));
         a.ticks = log_ticks(a.lo, a.hi);
     } else {
-        const std::vector<Tick> t = linear_ticks(lo, hi, 6);
-        const double step = t.size() >= 2 ? t[1].value - t[0].value : (hi - lo);
-        a.lo = std::floor(lo / step + 1e-9) * step;
-        a.hi = std::ceil(hi / step - 1e-9) * step;
-        a.ticks = linear_ticks(a.lo, a.hi, 6);
+        // The data's range and 4 % either side, so no point sits on the frame
+        // (not below 0 for positive data); nice ticks inside it.
+        const double pad = 0.04 * (hi - lo);
+        a.lo = lo > 0.0 ? std::max(0.0, lo - pad) : lo - pad;
+        a.hi = hi + pad;
+        a.ticks = linear_ticks(a.lo, a.hi, 7);
     }
     return a;
 }
@@ -67,27 +84,45 @@ struct LegendEntry {
     std::string color;
     bool dashed = false;
     bool marker = true;
+    bool line = true;  // false: a text-only note (e.g. "no fit: R^2 = 0.23")
 };
+
+std::string shorten(const std::string& name) {
+    if (name.size() <= kMaxLegendChars) return name;
+    std::size_t cut = kMaxLegendChars - 3;
+    while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;  // whole UTF-8 characters
+    return name.substr(0, cut) + "...";
+}
 
 // The frame shared by both plots; emits everything but the data.
 struct Frame {
     PlotAxes axes;
     Axis x, y;
     double left = 70, top = 40, right = 0, bottom = 0;  // plot-area edges
-
-    bool legend_inside = false;  // top-left inside the plot area, else right of it
     double legend_w = 0.0;
-    int canvas_width = 0;  // axes.width, widened by an outside legend so long
-                           // series names never squeeze the plot area
+    std::size_t legend_rows = 1, legend_cols = 0;
+    bool rotate_x = false;  // x tick labels too long for their spacing: drawn at -35 degrees
+    int canvas_width = 0, canvas_height = 0;  // axes' size, widened by the legend and rotated labels
 
     Frame(const PlotAxes& ax, const std::vector<double>& xs, const std::vector<double>& ys,
-          const std::vector<LegendEntry>& legend, bool inside)
-        : axes(ax), x(make_axis(xs, ax.log_x)), y(make_axis(ys, ax.log_y)), legend_inside(inside) {
-        for (const auto& e : legend) legend_w = std::max(legend_w, 34.0 + kCharWidth * static_cast<double>(e.name.size()));
+          const std::vector<LegendEntry>& legend)
+        : axes(ax), x(make_axis(xs, ax.log_x, ax.x_ticks)), y(make_axis(ys, ax.log_y)) {
+        for (const auto& e : legend)
+            legend_w = std::max(legend_w, (e.line || e.marker ? 34.0 : 4.0) + kCharWidth * static_cast<double>(shorten(e.name).size()));
+        if (!axes.title.empty()) top = axes.subtitle.empty() ? 40 : 56;
+        else top = axes.subtitle.empty() ? 20 : 36;
         right = axes.width - 20.0;
-        canvas_width = axes.width + (legend.empty() || legend_inside ? 0 : static_cast<int>(legend_w + 10.0));
         bottom = axes.height - 50.0;
-        if (axes.title.empty()) top = 20;
+        double label_w = 0.0;
+        for (const Tick& t : x.ticks) label_w = std::max(label_w, kCharWidth * static_cast<double>(t.label.size()));
+        const double spacing = (right - left) / static_cast<double>(std::max<std::size_t>(x.ticks.size(), 1));
+        rotate_x = label_w > spacing - 6.0;
+        const double extra = rotate_x ? std::max(0.0, 0.57 * label_w - 10.0) : 0.0;  // sin 35 deg
+        canvas_height = axes.height + static_cast<int>(extra);
+        bottom = canvas_height - 50.0 - extra;
+        legend_rows = std::max<std::size_t>(1, static_cast<std::size_t>((bottom - top - 8.0) / kLegendRow));
+        legend_cols = legend.empty() ? 0 : (legend.size() + legend_rows - 1) / legend_rows;
+        canvas_width = axes.width + static_cast<int>(static_cast<double>(legend_cols) * (legend_w + 12.0));
     }
     double px(double v) const { return left + x.unit(v) * (right - left); }
     double py(double v) const { return bottom - y.unit(v) * (bottom - top); }
@@ -96,14 +131,17 @@ struct Frame {
         std::string s;
         s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
         s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + std::to_string(canvas_width) +
-             "\" height=\"" + std::to_string(axes.height) + "\" viewBox=\"0 0 " + std::to_string(canvas_width) + " " +
-             std::to_string(axes.height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+             "\" height=\"" + std::to_string(canvas_height) + "\" viewBox=\"0 0 " + std::to_string(canvas_width) + " " +
+             std::to_string(canvas_height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
         s += "<defs><clipPath id=\"plot-area\"><rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" +
              num(right - left) + "\" height=\"" + num(bottom - top) + "\"/></clipPath></defs>\n";
         s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
         if (!axes.title.empty())
             s += "<text x=\"" + num((left + right) / 2) + "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" +
                  xml_escape(axes.title) + "</text>\n";
+        if (!axes.subtitle.empty())
+            s += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(top - 10) +
+                 "\" text-anchor=\"middle\" fill=\"#555555\">" + xml_escape(axes.subtitle) + "</text>\n";
         s += "<g stroke=\"#dddddd\" stroke-width=\"1\">\n";
         for (const Tick& t : x.ticks)
             s += "<line x1=\"" + num(px(t.value)) + "\" y1=\"" + num(top) + "\" x2=\"" + num(px(t.value)) + "\" y2=\"" +
@@ -114,14 +152,19 @@ struct Frame {
         s += "</g>\n<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(right - left) +
              "\" height=\"" + num(bottom - top) + "\" fill=\"none\" stroke=\"#333333\"/>\n";
         s += "<g fill=\"#222222\">\n";
-        for (const Tick& t : x.ticks)
-            s += "<text x=\"" + num(px(t.value)) + "\" y=\"" + num(bottom + 16) + "\" text-anchor=\"middle\">" +
-                 xml_escape(t.label) + "</text>\n";
+        for (const Tick& t : x.ticks) {
+            const std::string tx = num(px(t.value)), ty = num(bottom + 16);
+            if (rotate_x)
+                s += "<text x=\"" + tx + "\" y=\"" + ty + "\" text-anchor=\"end\" transform=\"rotate(-35 " + tx + " " +
+                     ty + ")\">" + xml_escape(t.label) + "</text>\n";
+            else
+                s += "<text x=\"" + tx + "\" y=\"" + ty + "\" text-anchor=\"middle\">" + xml_escape(t.label) + "</text>\n";
+        }
         for (const Tick& t : y.ticks)
             s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(py(t.value) + 4) + "\" text-anchor=\"end\">" +
                  xml_escape(t.label) + "</text>\n";
         if (!axes.x_label.empty())
-            s += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(bottom + 38) + "\" text-anchor=\"middle\">" +
+            s += "<text x=\"" + num((left + right) / 2) + "\" y=\"" + num(canvas_height - 12.0) + "\" text-anchor=\"middle\">" +
                  xml_escape(axes.x_label) + "</text>\n";
         if (!axes.y_label.empty()) {
             const std::string cy = num((top + bottom) / 2);
@@ -129,19 +172,17 @@ struct Frame {
                  xml_escape(axes.y_label) + "</text>\n";
         }
         s += "</g>\n";
-        const double lx = legend_inside ? left + 8 : right + 12;
-        if (legend_inside && !legend.empty())
-            s += "<rect x=\"" + num(lx - 4) + "\" y=\"" + num(top + 4) + "\" width=\"" + num(legend_w) + "\" height=\"" +
-                 num(18.0 * static_cast<double>(legend.size()) + 4) +
-                 "\" fill=\"white\" fill-opacity=\"0.85\" stroke=\"#cccccc\"/>\n";
         for (std::size_t i = 0; i < legend.size(); ++i) {
             const LegendEntry& e = legend[i];
-            const double ly = top + 16 + 18.0 * static_cast<double>(i);
-            s += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 20) + "\" y2=\"" + num(ly) +
-                 "\" stroke=\"" + e.color + "\" stroke-width=\"2\"" + (e.dashed ? " stroke-dasharray=\"5,3\"" : "") + "/>\n";
+            const double lx = right + 14 + static_cast<double>(i / legend_rows) * (legend_w + 12.0);
+            const double ly = top + 10 + kLegendRow * static_cast<double>(i % legend_rows);
+            if (e.line)
+                s += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 20) + "\" y2=\"" + num(ly) +
+                     "\" stroke=\"" + e.color + "\" stroke-width=\"2\"" + (e.dashed ? " stroke-dasharray=\"5,3\"" : "") + "/>\n";
             if (e.marker)
                 s += "<circle cx=\"" + num(lx + 10) + "\" cy=\"" + num(ly) + "\" r=\"3\" fill=\"" + e.color + "\"/>\n";
-            s += "<text x=\"" + num(lx + 26) + "\" y=\"" + num(ly + 4) + "\">" + xml_escape(e.name) + "</text>\n";
+            s += "<text x=\"" + num(lx + (e.line || e.marker ? 26 : 0)) + "\" y=\"" + num(ly + 4) + "\">" + xml_escape(shorten(e.name)) +
+                 "</text>\n";
         }
         return s;
     }
@@ -161,6 +202,36 @@ std::string polyline(const std::vector<std::pair<double, double>>& pts, const st
 }
 
 }  // namespace
+
+std::string series_color(std::size_t i, std::size_t n) {
+    if (n <= kPalette.size()) return kPalette[i % kPalette.size()];
+    // Evenly spaced hues (HSL s = 0.75), neighbours told apart by lightness too
+    // (0.32 and 0.55 alternating).
+    const double h = 360.0 * static_cast<double>(i) / static_cast<double>(n), l = i % 2 ? 0.55 : 0.32;
+    const double c = (1.0 - std::abs(2.0 * l - 1.0)) * 0.75, hp = h / 60.0;
+    const double xx = c * (1.0 - std::abs(std::fmod(hp, 2.0) - 1.0)), m = l - c / 2.0;
+    double r = 0, g = 0, b = 0;
+    if (hp < 1) r = c, g = xx;
+    else if (hp < 2) r = xx, g = c;
+    else if (hp < 3) g = c, b = xx;
+    else if (hp < 4) g = xx, b = c;
+    else if (hp < 5) r = xx, b = c;
+    else r = c, b = xx;
+    const auto byte = [](double v) { return std::clamp(static_cast<int>(std::lround(v * 255.0)), 0, 255); };
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "#%02X%02X%02X", byte(r + m), byte(g + m), byte(b + m));
+    return buf;
+}
+
+bool spans_decades(const std::vector<double>& values, double decades) {
+    double lo = INFINITY, hi = 0.0;
+    for (double v : values) {
+        if (!std::isfinite(v)) continue;
+        if (v <= 0.0) return false;
+        lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    return hi > 0.0 && hi / lo > std::pow(10.0, decades);
+}
 
 std::string xml_escape(const std::string& text) {
     std::string out;
@@ -189,18 +260,18 @@ std::string line_plot_svg(const LinePlot& plot) {
         for (std::size_t k = 0; k < s.x.size(); ++k)
             if (usable(s.x[k], plot.axes.log_x) && usable(s.y[k], plot.axes.log_y))
                 xs.push_back(s.x[k]), ys.push_back(s.y[k]);
-        legend.push_back({s.name, kPalette[i % kPalette.size()], false, plot.markers});
+        legend.push_back({s.name, series_color(i, plot.series.size()), false, plot.markers, plot.lines});
     }
-    const Frame f(plot.axes, xs, ys, legend, false);
+    const Frame f(plot.axes, xs, ys, legend);
     std::string svg = f.open(legend);
     svg += "<g clip-path=\"url(#plot-area)\">\n";
     for (std::size_t i = 0; i < plot.series.size(); ++i) {
         const PlotSeries& s = plot.series[i];
-        const std::string color = kPalette[i % kPalette.size()];
+        const std::string color = series_color(i, plot.series.size());
         std::vector<std::pair<double, double>> run;
         std::string dots;
         auto flush = [&] {
-            if (run.size() >= 2) svg += polyline(run, color, false);
+            if (plot.lines && run.size() >= 2) svg += polyline(run, color, false);
             run.clear();
         };
         for (std::size_t k = 0; k < s.x.size(); ++k) {
@@ -209,9 +280,12 @@ std::string line_plot_svg(const LinePlot& plot) {
                 continue;
             }
             run.emplace_back(f.px(s.x[k]), f.py(s.y[k]));
-            if (plot.markers)
-                dots += "<circle cx=\"" + num(run.back().first) + "\" cy=\"" + num(run.back().second) +
-                        "\" r=\"3\" fill=\"" + color + "\"/>\n";
+            if (i < plot.point_labels.size() && k < plot.point_labels[i].size() && !plot.point_labels[i][k].empty())
+                dots += "<text x=\"" + num(run.back().first + 6) + "\" y=\"" + num(run.back().second - 6) +
+                        "\" font-size=\"10\" fill=\"" + color + "\">" + xml_escape(plot.point_labels[i][k]) + "</text>\n";
+            if (plot.markers || !plot.lines)
+                dots += "<circle cx=\"" + num(run.back().first) + "\" cy=\"" + num(run.back().second) + "\" r=\"" +
+                        (plot.lines ? "3" : "4") + "\" fill=\"" + color + "\"/>\n";
         }
         flush();
         svg += dots;
@@ -249,9 +323,15 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
     }
     std::vector<LegendEntry> legend;
     if (plot.guide == ScatterGuide::Identity) legend.push_back({"y = x", "#777777", true, false});
-    if (have_fit) legend.push_back({"least-squares fit (R\xC2\xB2 = " + format_fixed(r2, 3) + ")", "#D55E00", true, false});
+    if (have_fit && r2 < plot.min_r2) {  // a line through unrelated points would suggest a relation
+        have_fit = false;
+        legend.push_back({"no fit: R\xC2\xB2 = " + format_fixed(r2, 2) + " < " + format_fixed(plot.min_r2, 2), "", false,
+                          false, false});
+    } else if (have_fit) {
+        legend.push_back({"least-squares fit (R\xC2\xB2 = " + format_fixed(r2, 3) + ")", "#D55E00", true, false});
+    }
 
-    const Frame f(ax, xs, ys, legend, true);
+    const Frame f(ax, xs, ys, legend);
     std::string svg = f.open(legend);
     svg += "<g clip-path=\"url(#plot-area)\">\n";
     if (plot.guide == ScatterGuide::Identity) {
@@ -269,13 +349,34 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
         if (pts.size() >= 2) svg += polyline(pts, "#D55E00", true);
     }
     std::string labels;  // outside the clip, so labels of edge points stay whole
+    struct Box { double x0, y0, x1, y1; };
+    std::vector<Box> taken;  // placed labels and the points themselves
+    for (const ScatterPoint& p : plot.points)
+        if (usable(p.x, ax.log_x) && usable(p.y, ax.log_y))
+            taken.push_back({f.px(p.x) - 4, f.py(p.y) - 4, f.px(p.x) + 4, f.py(p.y) + 4});
+    const auto overlaps = [&](const Box& b) {  // with another label or point, or outside the plot area
+        if (b.x0 < f.left || b.x1 > f.right || b.y0 < f.top || b.y1 > f.bottom) return true;
+        return std::any_of(taken.begin(), taken.end(),
+                           [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+    };
     for (const ScatterPoint& p : plot.points) {
         if (!usable(p.x, ax.log_x) || !usable(p.y, ax.log_y)) continue;
         const double cx = f.px(p.x), cy = f.py(p.y);
         svg += "<circle cx=\"" + num(cx) + "\" cy=\"" + num(cy) + "\" r=\"3.5\" fill=\"#0072B2\" fill-opacity=\"0.8\"/>\n";
-        if (!p.label.empty())
-            labels += "<text x=\"" + num(cx + 5) + "\" y=\"" + num(cy - 5) + "\" font-size=\"10\" fill=\"#333333\">" +
-                      xml_escape(p.label) + "</text>\n";
+        if (p.label.empty()) continue;
+        // First free spot of: right, left, above, below, further right/left; else right anyway.
+        const double w = 6.0 * static_cast<double>(p.label.size()), h = 11.0;
+        const std::array<std::pair<double, double>, 8> spots{{{cx + 6, cy - 2}, {cx - 6 - w, cy - 2}, {cx - w / 2, cy - 8},
+                                                              {cx - w / 2, cy + 6 + h}, {cx + 6, cy - 10}, {cx + 6, cy + 8},
+                                                              {cx - 6 - w, cy - 10}, {cx - 6 - w, cy + 8}}};
+        const auto free = std::find_if(spots.begin(), spots.end(), [&](const auto& s) {
+            return !overlaps({s.first, s.second - h + 2, s.first + w, s.second + 2});
+        });
+        if (free == spots.end()) continue;  // crowded: no label rather than an unreadable pile
+        const std::pair<double, double> at = *free;
+        taken.push_back({at.first, at.second - h + 2, at.first + w, at.second + 2});
+        labels += "<text x=\"" + num(at.first) + "\" y=\"" + num(at.second + 3) + "\" font-size=\"10\" fill=\"#333333\">" +
+                  xml_escape(p.label) + "</text>\n";
     }
     return svg + "</g>\n" + labels + "</svg>\n";
 }

@@ -1,9 +1,12 @@
 // SVG plots for the reports: line plots with several named series ("speedup
 // vs tilt, one line per N") and scatter plots with optional point labels and
 // a y = x or least-squares guide ("speedup vs AABB/OBB surface-area ratio").
+// Legends sit outside the plot area (right of it, in columns when long).
 // Hand-written SVG 1.1, no dependencies; text is XML-escaped and numbers are
 // printed locale-independently, so the same input gives the same bytes.
 #pragma once
+
+#include "sim/plot/ticks.h"
 
 #include <string>
 #include <vector>
@@ -18,11 +21,13 @@ struct PlotSeries {
 
 struct PlotAxes {
     std::string title;
+    std::string subtitle;  // one smaller line under the title (e.g. the cost preset)
     std::string x_label;
     std::string y_label;
     bool log_x = false;  // non-positive values are skipped on a log axis
     bool log_y = false;
-    int width = 640;  // SVG user units (px)
+    std::vector<Tick> x_ticks;  // explicit x ticks (e.g. "1000, 0.002" at x = 1000); empty: automatic
+    int width = 640;  // SVG user units (px) of the frame; an outside legend widens the canvas
     int height = 420;
 };
 
@@ -30,7 +35,16 @@ struct LinePlot {
     PlotAxes axes;
     std::vector<PlotSeries> series;
     bool markers = true;  // a dot at every data point
+    bool lines = true;    // join a series' points (off for categorical x)
+    std::vector<std::vector<std::string>> point_labels;  // optional, per series and point: beside its marker
 };
+
+// Colour of series i of n: the Okabe-Ito palette (colour-blind safe) up to
+// 8 series, evenly spaced hues beyond, so no two series share a colour.
+[[nodiscard]] std::string series_color(std::size_t i, std::size_t n);
+
+// True when positive values span more than `decades` decades (log axis).
+[[nodiscard]] bool spans_decades(const std::vector<double>& values, double decades = 2.0);
 
 struct ScatterPoint {
     double x = 0.0;
@@ -48,6 +62,8 @@ struct ScatterPlot {
     PlotAxes axes;
     std::vector<ScatterPoint> points;
     ScatterGuide guide = ScatterGuide::None;
+    // LeastSquares: the fit is drawn only when R^2 >= min_r2; R^2 is printed either way.
+    double min_r2 = 0.8;
 };
 
 // Throws std::invalid_argument when a series' x and y differ in length.

@@ -68,7 +68,9 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
             }
         }
         const std::string path = (std::filesystem::path(dir) / ("break_even_" + spec.name + ".png")).string();
-        write_png(render_break_even(g), path);
+        BreakEvenOptions options;
+        options.scale = 2;  // readable text
+        write_png(render_break_even(g, options), path);
         written.push_back(path);
     }
     return written;

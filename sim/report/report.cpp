@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <algorithm>
-
 namespace rtc {
 
 namespace {
@@ -172,11 +170,14 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
                          {"total", run.total_seconds}};
+    if (!run.provenance.is_null()) j["provenance"] = run.provenance;  // set by sim/app (provenance.h)
     return j;
 }
 
-// One row per run; per method its cycles and IS calls per ray (primary cost
-// preset), per non-baseline method its speedup and memory overhead.
+// One row per run; per method its cycles and IS calls per ray under the
+// primary (first) cost preset, named in the "cost preset" column (every preset:
+// speedups.csv and results.csv), per non-baseline method its speedup; per
+// method its total memory in MiB, and the memory overhead over the baseline.
 Table summary_table(const std::vector<RunResult>& runs) {
     std::vector<std::string> names;  // every method of any run, in first-seen order
     for (const RunResult& r : runs)
@@ -186,11 +187,12 @@ Table summary_table(const std::vector<RunResult>& runs) {
     std::vector<std::string> others;
     for (const std::string& n : names)
         if (n != baseline) others.push_back(n);
-    std::vector<std::string> header{"run", "kind", "prims", "rays"};
+    std::vector<std::string> header{"run", "kind", "prims", "rays", "cost preset"};
     for (const std::string& n : names) header.push_back(n + " cyc/ray");
     for (const std::string& n : names) header.push_back(n + " IS/ray");
     for (const std::string& n : others) header.push_back(n + " speedup");
     header.push_back("AABB/OBB area");
+    for (const std::string& n : names) header.push_back(n + " MiB");
     for (const std::string& n : others) header.push_back(n + " mem overhead");
     Table t(header);
     for (const RunResult& r : runs) {
@@ -205,7 +207,8 @@ Table summary_table(const std::vector<RunResult>& runs) {
         std::vector<std::string> row{r.sweep_label.empty() ? r.config.name : r.sweep_label,
                                      std::string(kind_name(r.config.kind)),
                                      format_thousands(static_cast<std::int64_t>(r.primitives)),
-                                     any ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-"};
+                                     any ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-",
+                                     r.costs.empty() ? "-" : r.costs.front().name};
         for (const std::string& n : names) {
             const MethodRun* m = r.find(n);
             const bool priced = m && m->runnable && !m->priced.empty() && m->priced[0].supported;
@@ -220,6 +223,10 @@ Table summary_table(const std::vector<RunResult>& runs) {
             row.push_back(s > 0 ? format_speedup(s) : "n/a");
         }
         row.push_back(format_sig(r.areas.ratio_paper(), 3));
+        for (const std::string& n : names) {
+            const MethodRun* m = r.find(n);
+            row.push_back(m && m->runnable ? format_sig(m->memory.total() / (1024.0 * 1024.0), 4) : "n/a");
+        }
         for (const std::string& n : others) {
             const double o = r.memory_overhead_percent(n);
             row.push_back(std::isnan(o) ? "-" : format_sig(o, 3) + "%");

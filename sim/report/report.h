@@ -23,6 +23,30 @@ namespace rtc {
 // per run and method (speedups.csv, speedups.md).
 [[nodiscard]] Table speedup_table(const std::vector<RunResult>& runs);
 
+// results.csv: one row per run (sweep point) x method x cost preset, raw
+// numbers (empty where n/a, with a reason), one column per sweep value (an
+// object value gives one column per inner key: "scene.count", "scene.radius").
+[[nodiscard]] std::string results_csv(const std::vector<RunResult>& runs);
+// The sweep-value columns of results.csv, in first-seen order.
+[[nodiscard]] std::vector<std::string> sweep_columns(const std::vector<RunResult>& runs);
+
+// A sweep's report.json: its axes and its points (index, label, values, the
+// point's directory relative to the sweep's, and the point's report_json).
+[[nodiscard]] nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
+                                                       const std::vector<std::string>& point_dirs);
+
+// Into `dir`: results.csv, summary.csv/.md, speedups.csv/.md, and when the
+// runs are sweep points (non-empty point_dirs, relative to `dir`) the
+// combined report.json.
+void write_sweep_outputs(const std::vector<RunResult>& runs, const std::vector<std::string>& point_dirs,
+                         const std::string& dir);
+
+// Per method: counts_<method>.npy (H x W x E uint32 per pixel, or R x E per
+// ray for ray lists) and cycles_<method>_<preset>.npy (H x W float64, or R
+// for per-ray presets on ray lists), plus arrays.json (event names in order,
+// shapes, totals). Call before the per-pixel data are freed. Returns the files.
+std::vector<std::string> write_arrays(const RunResult& run, const std::string& dir);
+
 // Render, per-method heat maps of cycles and IS calls per pixel on common
 // scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
 void write_images(const RunResult& run, const std::string& dir);

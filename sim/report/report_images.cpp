@@ -1,6 +1,7 @@
 // The pictures of a run: the shaded render, heat maps of cycles and of
 // intersection-program calls per pixel for each method on one common scale
-// (the paper's figures 1 and 4), the ref/obb ratio map, and sweep plots.
+// (the paper's figures 1 and 4), the ref/obb ratio map (sweep plots:
+// sweep_plots.cpp).
 #include "sim/plot/heatmap.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
@@ -108,107 +109,6 @@ void write_images(const RunResult& run, const std::string& dir) {
         write_png(render_ratio_map(cycles[static_cast<std::size_t>(base_at - traced.begin())], cycles[i], o).image,
                   path_in(dir, "ratio_cycles_" + bname + "_over_" + name + ".png"));
     }
-}
-
-std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, const std::string& dir) {
-    std::vector<std::string> written;
-    if (runs.size() < 2) return written;
-    // Numeric sweep axes with more than one value.
-    std::map<std::string, std::set<double>> axes;
-    for (const RunResult& r : runs)
-        for (const auto& [k, v] : r.sweep_values.items())
-            if (v.is_number()) axes[k].insert(v.get<double>());
-    const std::string& bname = runs.front().config.baseline;
-    std::vector<std::string> others;  // every non-baseline method, first-seen order
-    for (const RunResult& r : runs)
-        for (const MethodRun& m : r.methods)
-            if (m.method != bname && std::find(others.begin(), others.end(), m.method) == others.end())
-                others.push_back(m.method);
-    const bool one = others.size() == 1;
-    const std::string who = one ? others.front() : "each method";
-    for (const auto& [axis, values] : axes) {
-        if (values.size() < 2) continue;
-        // One series per method and combination of the other sweep values.
-        std::map<std::string, PlotSeries> series;
-        for (const std::string& method : others) {
-            for (const RunResult& r : runs) {
-                if (!r.sweep_values.contains(axis) || !r.sweep_values[axis].is_number()) continue;
-                const double s = r.speedup(method);
-                std::string key = one ? "" : method;
-                for (const auto& [k, v] : r.sweep_values.items())
-                    if (k != axis) key += (key.empty() ? "" : ", ") + k + "=" + (v.is_string() ? v.get<std::string>() : v.dump());
-                PlotSeries& ps = series[key];
-                ps.name = key.empty() ? method : key;
-                ps.x.push_back(r.sweep_values[axis].get<double>());
-                ps.y.push_back(s > 0 ? s : std::numeric_limits<double>::quiet_NaN());
-            }
-        }
-        LinePlot plot;
-        plot.axes.title = "speedup of " + who + " over " + bname + " vs " + axis;
-        plot.axes.x_label = axis;
-        plot.axes.y_label = one ? "speedup (" + bname + " cycles / " + who + " cycles)"
-                                : "speedup (" + bname + " cycles / method cycles)";
-        for (auto& [k, s] : series) plot.series.push_back(std::move(s));
-        std::string file = "speedup_vs_" + axis + ".svg";
-        for (char& ch : file) if (ch == '/' ) ch = '_';
-        write_text_file(path_in(dir, file), line_plot_svg(plot));
-        written.push_back(file);
-    }
-    // The Pareto view: speedup against memory overhead, one line per method
-    // and combination of the string-valued sweep values (scene, kind, ...),
-    // its points in sweep order (e.g. a cluster size sweep).
-    std::map<std::string, std::set<std::string>> strings;  // string-valued axes and their values
-    for (const RunResult& r : runs)
-        for (const auto& [k, v] : r.sweep_values.items())
-            if (v.is_string()) strings[k].insert(v.get<std::string>());
-    std::map<std::string, PlotSeries> pareto;
-    for (const std::string& method : others) {
-        for (const RunResult& r : runs) {
-            const double s = r.speedup(method), o = r.memory_overhead_percent(method);
-            if (!(s > 0) || std::isnan(o)) continue;
-            std::string key = one ? "" : method;
-            for (const auto& [k, v] : r.sweep_values.items()) {
-                if (!v.is_string() || strings[k].size() < 2) continue;
-                // "scene.name" reads "scene", "cluster.strategy" reads "strategy".
-                const std::size_t dot = k.rfind('.');
-                const std::string name = k.ends_with(".name") ? k.substr(0, dot)
-                                         : dot == std::string::npos ? k : k.substr(dot + 1);
-                key += (key.empty() ? "" : ", ") + name + "=" + v.get<std::string>();
-            }
-            if (key.empty()) key = method;
-            PlotSeries& ps = pareto[key];
-            ps.name = key;
-            ps.x.push_back(o);
-            ps.y.push_back(s);
-        }
-    }
-    if (std::any_of(pareto.begin(), pareto.end(), [](const auto& p) { return p.second.x.size() > 1; })) {
-        LinePlot plot;
-        plot.axes.title = "speedup over " + bname + " vs memory overhead (Pareto)";
-        plot.axes.x_label = "total memory over " + bname + " (%)";
-        plot.axes.y_label = "speedup (" + bname + " cycles / method cycles)";
-        plot.axes.height = 480;
-        for (auto& [k, s] : pareto) plot.series.push_back(std::move(s));
-        write_text_file(path_in(dir, "speedup_vs_memory.svg"), line_plot_svg(plot));
-        written.push_back("speedup_vs_memory.svg");
-    }
-    // Speedup against the surface-area ratio over every run (figure 9's metric).
-    for (const std::string& method : others) {
-        ScatterPlot scatter;
-        scatter.axes.title = "speedup vs AABB/OBB surface-area ratio";
-        scatter.axes.x_label = "sum AABB area / sum OBB area (paper OBBs)";
-        scatter.axes.y_label = "speedup of " + method + " over " + bname;
-        for (const RunResult& r : runs) {
-            const double s = r.speedup(method);
-            if (s > 0) scatter.points.push_back({r.areas.ratio_paper(), s, ""});
-        }
-        if (scatter.points.size() < 2) continue;
-        scatter.guide = ScatterGuide::LeastSquares;
-        const std::string file = one ? "speedup_vs_area_ratio.svg" : "speedup_vs_area_ratio_" + method + ".svg";
-        write_text_file(path_in(dir, file), scatter_plot_svg(scatter));
-        written.push_back(file);
-    }
-    return written;
 }
 
 }  // namespace rtc

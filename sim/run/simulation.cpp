@@ -33,6 +33,52 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::str
     return f;
 }
 
+// Loads the cost and memory presets into `r`; returns, per cost preset, its
+// index among the warp presets (SIZE_MAX for per-ray presets).
+std::vector<std::size_t> load_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
+    r.costs.clear();
+    for (const std::string& p : c.cost_presets) r.costs.push_back(load_cost_model(p));
+    r.memory = load_memory_model(c.memory_preset);
+    r.warp_grouping.reset();
+    // One traced frame serves every preset, so warp presets must group rays alike.
+    std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
+    for (std::size_t p = 0; p < r.costs.size(); ++p) {
+        const CostModel& cost = r.costs[p];
+        if (!cost.execution.warp()) continue;
+        if (!r.warp_grouping) r.warp_grouping = cost.execution;
+        if (!r.warp_grouping->same_grouping(cost.execution))
+            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
+                             " groups rays into other warps (warp_width, tile) than " + r.costs[0].name +
+                             "; presets of one run must share them");
+        warp_index[p] = warp_presets.size();
+        warp_presets.push_back(&cost);
+    }
+    return warp_index;
+}
+
+// Prices a traced method under every cost preset of `r` and its structures
+// under r's memory preset. `warp_index` as load_presets returns it; the
+// frame's warp totals are in that order.
+void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
+                  const std::vector<std::size_t>& warp_index) {
+    m.priced.clear();
+    m.warp.clear();
+    for (std::size_t k = 0; k < r.costs.size(); ++k) {
+        const CostModel& cost = r.costs[k];
+        PricedRun p = price(m.frame.totals, cost);
+        p.execution = cost.execution.kind;
+        m.warp.emplace_back();
+        if (warp_index[k] != SIZE_MAX) {
+            m.warp.back() = m.frame.warp[warp_index[k]];
+            p.total_cycles = m.warp.back().cycles();
+        }
+        p.missing_feature = cost.missing_feature(method.info.needs);
+        p.supported = p.missing_feature.empty();
+        m.priced.push_back(std::move(p));
+    }
+    m.memory = price_memory(m.structures, r.memory, r.config.kind, r.primitives, r.mesh_vertices, r.mesh_triangles);
+}
+
 }  // namespace
 
 const MethodRun* RunResult::find(std::string_view name) const {
@@ -65,22 +111,8 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     RunResult r;
     r.config = c;
     r.effective_config = effective;
-    for (const std::string& p : c.cost_presets) r.costs.push_back(load_cost_model(p));
-    r.memory = load_memory_model(c.memory_preset);
-    // One traced frame serves every preset, so warp presets must group rays alike.
     std::vector<const CostModel*> warp_presets;
-    std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
-    for (std::size_t p = 0; p < r.costs.size(); ++p) {
-        const CostModel& cost = r.costs[p];
-        if (!cost.execution.warp()) continue;
-        if (!r.warp_grouping) r.warp_grouping = cost.execution;
-        if (!r.warp_grouping->same_grouping(cost.execution))
-            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
-                             " groups rays into other warps (warp_width, tile) than " + r.costs[0].name +
-                             "; presets of one run must share them");
-        warp_index[p] = warp_presets.size();
-        warp_presets.push_back(&cost);
-    }
+    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
 
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
@@ -91,6 +123,8 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
     r.areas = area_stats(geometry.prims);
+    r.mesh_vertices = scene.mesh.vertices.size();
+    r.mesh_triangles = scene.mesh.triangles.size();
     r.convert_seconds = seconds_since(t_convert);
 
     RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry), c.file);
@@ -149,22 +183,75 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
             m.frame.hits.clear();
             m.frame.hits.shrink_to_fit();
         }
-        for (std::size_t k = 0; k < r.costs.size(); ++k) {
-            const CostModel& cost = r.costs[k];
-            PricedRun p = price(m.frame.totals, cost);
-            p.execution = cost.execution.kind;
-            m.warp.emplace_back();
-            if (warp_index[k] != SIZE_MAX) {
-                m.warp.back() = m.frame.warp[warp_index[k]];
-                p.total_cycles = m.warp.back().cycles();
-            }
-            p.missing_feature = cost.missing_feature(method.info.needs);
-            p.supported = p.missing_feature.empty();
-            m.priced.push_back(std::move(p));
-        }
-        m.memory = price_memory(m.structures, r.memory, c.kind, r.primitives,
-                                scene.mesh.vertices.size(), scene.mesh.triangles.size());
+        price_method(m, r, method, warp_index);
         r.methods.push_back(std::move(m));
+    }
+    r.total_seconds = seconds_since(t_start);
+    return r;
+}
+
+bool same_trace(const nlohmann::json& a, const nlohmann::json& b) {
+    if (!a.is_object() || !b.is_object()) return a == b;
+    nlohmann::json x = a, y = b;
+    for (const char* key : {"cost", "memory", "name", "description"}) {
+        x.erase(key);
+        y.erase(key);
+    }
+    return x == y;
+}
+
+std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c, const nlohmann::json& effective) {
+    const auto t_start = std::chrono::steady_clock::now();
+    RunResult r = traced;
+    r.config = c;
+    r.effective_config = effective;
+    r.repriced = true;
+    r.provenance = nullptr;
+    r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
+    std::vector<const CostModel*> warp_presets;
+    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
+        return std::nullopt;
+    for (MethodRun& m : r.methods) {
+        const MethodEntry& method = *find_method(m.method);
+        const MethodRun& old = *traced.find(m.method);
+        if (!old.runnable) {
+            // Not traced: not applicable to the scene (no instances counted),
+            // or stopped by the instance limit, which the memory preset sets.
+            if (old.instances == 0) continue;
+            if (old.instances <= r.memory.instance_limit) return std::nullopt;
+            m.reason = std::to_string(m.instances) + " instances exceed the instance limit of " +
+                       std::to_string(r.memory.instance_limit) + " (" + r.memory.name + ")";
+            continue;
+        }
+        if (m.instances > r.memory.instance_limit) {
+            m = MethodRun{};
+            m.method = old.method;
+            m.instances = old.instances;
+            m.runnable = false;
+            m.reason = std::to_string(m.instances) + " instances exceed the instance limit of " +
+                       std::to_string(r.memory.instance_limit) + " (" + r.memory.name + ")";
+            continue;
+        }
+        // Each warp preset's totals: the traced ones when the preset was in
+        // the traced run, else re-priced from the recorded waves.
+        std::vector<WarpTotals> warp(warp_presets.size());
+        for (std::size_t w = 0; w < warp_presets.size(); ++w) {
+            bool found = false;
+            for (std::size_t k = 0, tw = 0; k < traced.costs.size() && !found; ++k) {
+                if (!traced.costs[k].execution.warp()) continue;
+                if (traced.config.cost_presets[k] == c.cost_presets[&*warp_presets[w] - r.costs.data()]) {
+                    warp[w] = old.frame.warp[tw];
+                    found = true;
+                }
+                ++tw;
+            }
+            if (found) continue;
+            if (old.frame.warp_trace.waves() == 0) return std::nullopt;
+            warp[w] = old.frame.warp_trace.price(*warp_presets[w]);
+        }
+        m.frame.warp = std::move(warp);
+        price_method(m, r, method, warp_index);
     }
     r.total_seconds = seconds_since(t_start);
     return r;

@@ -45,6 +45,9 @@ struct RunResult {
     MemoryModel memory;
     Camera camera;                     // resolved camera (camera workloads)
     std::vector<MethodRun> methods;
+    std::size_t mesh_vertices = 0, mesh_triangles = 0;  // for memory pricing without the scene
+    bool repriced = false;             // priced from another point's trace (reprice_run)
+    nlohmann::ordered_json provenance; // set by the app (sim/app/provenance.h); report.json's "provenance"
     double load_seconds = 0.0, convert_seconds = 0.0, total_seconds = 0.0;
 
     [[nodiscard]] const MethodRun* find(std::string_view method) const;
@@ -71,5 +74,18 @@ struct RunContext {
 
 [[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,
                                        const RunContext& context);
+
+// True when two (sweep-expanded) configs trace the same rays through the same
+// structures: they differ at most in the pricing-only keys `cost` and
+// `memory` (and `name`/`description`).
+[[nodiscard]] bool same_trace(const nlohmann::json& a, const nlohmann::json& b);
+
+// `config` priced from `traced`, a run of a config with the same trace
+// (same_trace), without tracing again: the counts are re-priced under
+// config's cost presets and the structures under its memory preset. nullopt
+// when that is not possible (a warp preset the trace did not record waves
+// for, or a method the other memory preset's instance limit now lets run).
+[[nodiscard]] std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& config,
+                                                   const nlohmann::json& effective);
 
 }  // namespace rtc

@@ -115,7 +115,7 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
         e.rays = rays * methods;
         e.rays_key = "/workload/rays_file";
         e.rays_detail = count_text(rays) + " rays x " + count_text(methods) + " method(s)";
-        e.memory_bytes += rays * kBytesPerFileRay;
+        e.memory_bytes += rays * (kBytesPerFileRay + methods * sizeof(RayCounts));  // + each method's per-ray counts
     } else {
         pixels = static_cast<double>(w.width) * w.height;
         const double per_path = 1.0 + (w.type == WorkloadType::Camera ? w.bounces : 0);

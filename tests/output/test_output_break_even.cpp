@@ -22,6 +22,12 @@ TEST_CASE("break-even map: winners, margins and empty cells are drawn") {
     // Map origin at (70, 40): cell 0 full colour (margin >= 2x), cell 1 grey.
     CHECK(img.get(75, 45) == Rgb{0, 114, 178});
     CHECK(img.get(85, 45) == Rgb{128, 128, 128});
+    o.scale = 2;  // the whole picture magnified: same cells at twice the coordinates
+    const Image big = render_break_even(g, o);
+    CHECK(big.width == 2 * img.width);
+    CHECK(big.height == 2 * img.height);
+    CHECK(big.get(151, 91) == Rgb{0, 114, 178});
+    CHECK(big.get(171, 91) == Rgb{128, 128, 128});
     g.winner.pop_back();
     CHECK_THROWS_AS((void)render_break_even(g, o), std::invalid_argument);
 }

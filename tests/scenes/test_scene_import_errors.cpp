@@ -22,8 +22,9 @@ void expect(const std::string& msg, const std::string& file_and_line, const std:
     CHECK(msg.find(part) != std::string::npos);
 }
 
-std::string pbrt_error(const std::string& text) {
-    const auto path = scratch_file("bad.pbrt", text);
+// `name`: each test case its own file, as ctest runs cases in parallel processes.
+std::string pbrt_error(const std::string& text, const std::string& name = "bad.pbrt") {
+    const auto path = scratch_file(name, text);
     return error_of([&] { (void)load_pbrt(path); });
 }
 
@@ -173,5 +174,6 @@ TEST_CASE("import: inputs the fuzzers found end as a mesh or an InputError") {
     expect(error_of([] { (void)load_mesh(kImportFixtures / "bad/ply_assimp_hang.ply"); }), "ply_assimp_hang.ply: line 3",
            "unexpected character 35");
     // A file name longer than the file system allows made std::filesystem::exists throw.
-    expect(pbrt_error("\nInclude \"" + std::string(5000, 'x') + "\"\n"), "bad.pbrt: line 2", "no such file");
+    expect(pbrt_error("\nInclude \"" + std::string(5000, 'x') + "\"\n", "long_name.pbrt"), "long_name.pbrt: line 2",
+           "no such file");
 }

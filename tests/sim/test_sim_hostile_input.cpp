@@ -34,6 +34,7 @@ std::string error_of(const std::string& config, std::vector<std::string> sets = 
     CliOptions cli;
     cli.config = config;
     cli.out = scratch("out").string();
+    fs::remove_all(*cli.out);  // a fresh output directory per run (a non-empty one is refused)
     cli.quiet = true;
     cli.sets = std::move(sets);
     cli.limits = limits;

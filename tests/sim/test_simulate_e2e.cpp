@@ -168,7 +168,7 @@ TEST_CASE("simulate e2e: bad input fails with one line naming the file and JSON 
     CHECK(error_of(kTiny, {"cluster.strategy=\"random\""}).find(kTiny + ": /cluster/strategy:") == 0);
     CHECK(error_of(kTiny, {"cluster.frame=\"pca\""}).find(kTiny + ": /cluster/frame:") == 0);
     CHECK(error_of(kTiny, {"cluster.sise=4"}).find(kTiny + ": /cluster/sise: unknown key") == 0);
-    CHECK(error_of(kTiny, {"cost=\"nope.json\""}).find("nope.json: cannot open") == 0);
+    CHECK(error_of(kTiny, {"cost=\"nope.json\""}).find(kTiny + ": /cost: no such preset file: tests/configs/nope.json") == 0);
     CHECK(error_of(kTiny, {"scene={\"type\":\"file\",\"curves\":{\"path\":\"missing.hair\"}}"})
               .find("missing.hair") != std::string::npos);
     CHECK(error_of("tests/configs/does_not_exist.json") == "tests/configs/does_not_exist.json: cannot open file");

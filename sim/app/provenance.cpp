@@ -1,0 +1,66 @@
+#include "sim/app/provenance.h"
+
+#include "sim/config/config_json.h"
+#include "sim/util/json_file.h"
+#include "sim/util/version.h"
+
+#include <algorithm>
+#include <ctime>
+#include <filesystem>
+#include <thread>
+
+namespace rtc {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+// A preset file as it was read: its path and its parsed contents.
+ojson preset_json(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path abs = std::filesystem::absolute(path, ec);
+    ojson j;
+    j["file"] = ec ? path : abs.lexically_normal().string();
+    try {
+        j["contents"] = ojson::parse(read_text_file(path));
+    } catch (const std::exception& e) {
+        j["contents"] = nullptr;  // read when the run started; gone or changed since
+        j["error"] = e.what();
+    }
+    return j;
+}
+
+}  // namespace
+
+std::string utc_now_iso8601() {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return text;
+}
+
+ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<std::string>& command_line) {
+    ojson j;
+    j["rtcsim_version"] = kVersion;
+    j["git_commit"] = git_commit();
+    j["git_dirty"] = git_dirty();
+    j["date"] = utc_now_iso8601();
+    j["threads"] = {{"requested", threads},
+                    {"used", threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency())}};
+    if (!command_line.empty()) j["command_line"] = command_line;
+    j["config_file"] = run.config.file;
+    j["repriced"] = run.repriced;  // priced from the previous sweep point's trace
+    j["effective_config"] = run_config_to_json(run.config);
+    ojson cost = ojson::array();
+    for (std::size_t i = 0; i < run.config.cost_presets.size(); ++i) {
+        ojson p = preset_json(run.config.cost_presets[i]);
+        p["name"] = i < run.costs.size() ? run.costs[i].name : std::string();
+        cost.push_back(std::move(p));
+    }
+    j["presets"] = {{"cost", cost}, {"memory", preset_json(run.config.memory_preset)}};
+    return j;
+}
+
+}  // namespace rtc

@@ -1,0 +1,39 @@
+// Paths named in configs, and where hardware presets are found.
+//
+// A relative path in a config resolves against the directory of the config
+// file that names it (never the working directory), so a config runs from
+// anywhere. A preset value without a '/' and without ".json" is a preset
+// *name*: `"cost": ["turing-calibrated"]` is <preset dir>/turing-calibrated.json,
+// with the preset directories searched in order (preset_dirs()).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rtc {
+
+// `path` as given when absolute, else relative to the directory of
+// `config_file` (the working directory when it has none), lexically normal.
+[[nodiscard]] std::string config_relative_path(const std::string& path, const std::string& config_file);
+
+// Where presets named by name are looked for, in order, existing or not:
+//   1. $RTCSIM_PRESET_DIR, if set and not empty;
+//   2. <directory of the running program>/../share/rtcsim/hw (a relocated install);
+//   3. the install's preset directory compiled in (CMAKE_INSTALL_FULL_DATADIR/rtcsim/hw);
+//   4. the source tree's configs/hw compiled in (so a build tree works).
+[[nodiscard]] std::vector<std::filesystem::path> preset_dirs();
+
+// True when `value` names a preset by name rather than by path.
+[[nodiscard]] bool is_preset_name(const std::string& value);
+
+// A preset value from a config: a name (searched in preset_dirs()) or a path
+// (config_relative_path). Throws InputError "<config_file>: <key>: ..." naming
+// the places searched when the preset is not found.
+[[nodiscard]] std::string resolve_preset(const std::string& value, const std::string& config_file,
+                                         const std::string& key);
+
+// True when `file` lies in one of preset_dirs() (a shipped or installed preset).
+[[nodiscard]] bool in_preset_dir(const std::filesystem::path& file);
+
+}  // namespace rtc

@@ -1,0 +1,262 @@
+// The command line (CLI11), paths relative to the config file, presets by
+// name, output-directory safety, calibrate's output, provenance in
+// report.json, the sweep order and re-pricing instead of re-tracing.
+#include "core/input_error.h"
+#include "sim/app/calibrate_runs.h"
+#include "sim/app/cli.h"
+#include "sim/app/run_all.h"
+#include "sim/app/simulate_main.h"
+#include "sim/config/config_json.h"
+#include "sim/config/sweep.h"
+#include "sim/util/json_file.h"
+#include "sim/util/paths.h"
+
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+using namespace rtc;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const std::string kTiny = "tests/configs/tiny.json";
+
+fs::path scratch(const std::string& name) {
+    const fs::path p = fs::path(RTCSIM_BINARY_DIR) / "cli_paths" / name;
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+void write(const fs::path& file, const std::string& text) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+}
+
+std::string error_of(const std::vector<std::string>& args) {
+    try {
+        (void)parse_cli(args);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+// Runs simulate in process; quiet, small.
+int simulate(std::vector<std::string> args) {
+    args.insert(args.end(), {"--quiet", "--threads", "2"});
+    return simulate_main(args);
+}
+
+json report_of(const fs::path& dir) { return json::parse(read_text_file((dir / "report.json").string())); }
+
+// A report without what changes from run to run (dates, threads, wall times).
+json comparable(json r) {
+    r.erase("provenance");
+    r.erase("wall_seconds");
+    r.erase("config");
+    r.erase("sweep_point");
+    r.erase("sweep_label");
+    for (auto& [name, m] : r["methods"].items()) m.erase("simulator");  // build and trace times
+    return r;
+}
+
+// Moves into `dir` for the scope, so relative paths cannot resolve by accident.
+struct WorkingDirectory {
+    fs::path saved = fs::current_path();
+    explicit WorkingDirectory(const fs::path& dir) { fs::current_path(dir); }
+    ~WorkingDirectory() { fs::current_path(saved); }
+};
+
+}  // namespace
+
+TEST_CASE("cli: --opt=value, --out --quiet is an error naming --out, exit 2") {
+    const CliOptions o = parse_cli({"--out=d", "--threads=3", "x.json", "--max-rays=1e9", "--set=a=1", "--set", "b=2"});
+    CHECK(*o.out == "d");
+    CHECK(o.threads == 3);
+    CHECK(o.limits.max_rays == 1e9);
+    CHECK(o.sets == std::vector<std::string>{"a=1", "b=2"});
+    CHECK(o.config == "x.json");
+    CHECK(o.command_line.front() == "simulate");
+    CHECK(error_of({"x.json", "--out", "--quiet"}).find("--out needs a value") != std::string::npos);
+    CHECK(error_of({"x.json", "--out"}).find("--out needs a value") != std::string::npos);
+    CHECK(error_of({"x.json", "--set", "--force"}).find("--set needs a value") != std::string::npos);
+    CHECK(error_of({"x.json", "--threads=many"}).find("--threads") != std::string::npos);
+    CHECK(error_of({"x.json", "--frobnicate=3"}).find("unknown option --frobnicate") != std::string::npos);
+    CHECK(error_of({"x.json", "y.json"}).find("more than one config") != std::string::npos);
+    CHECK(error_of({"calibrate"}).find("no config given") != std::string::npos);
+    const CliOptions c = parse_cli({"calibrate", "--out", "o", "x.json"});
+    CHECK(c.calibrate);
+    CHECK(c.config == "x.json");
+    CHECK(simulate_main({kTiny, "--out", "--quiet"}) == 2);
+    CHECK_FALSE(fs::exists("--quiet"));
+}
+
+TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") {
+    const fs::path dir = scratch("elsewhere");
+    write(dir / "cfg" / "data" / "strands.txt", "0 0 0 0.02\n0 0.5 0 0.02\n\n0.2 0 0 0.02\n0.2 0.5 0.1 0.01\n");
+    write(dir / "cfg" / "run.json", R"({"scene": {"type": "file", "curves": {"path": "data/strands.txt"}},
+        "cost": ["turing-guess", "turing-calibrated"], "memory": "memory-dxr",
+        "workload": {"width": 8, "height": 8, "spp": 1, "bounces": 0}, "output": {"images": false}})");
+    const fs::path out = dir / "out";
+    {
+        const WorkingDirectory cwd(dir.root_path());  // "/"
+        REQUIRE(simulate({(dir / "cfg" / "run.json").string(), "--out", out.string()}) == 0);
+    }
+    const json r = report_of(out);
+    CHECK(r["scene"]["strands"] == 2);
+    const json& presets = r["provenance"]["presets"];
+    CHECK(fs::path(presets["cost"][0]["file"].get<std::string>()).filename() == "turing-guess.json");
+    CHECK(presets["cost"][1]["name"] == "turing-calibrated");
+    CHECK(presets["memory"]["contents"]["name"] ==
+          json::parse(read_text_file(presets["memory"]["file"].get<std::string>()))["name"]);
+    // Relative to the config, not the working directory: from a directory
+    // where the path exists relative to the working directory, it fails.
+    const std::string file = (dir / "cfg" / "run.json").string();
+    json config = json::parse(read_text_file(file));
+    config["scene"]["curves"]["path"] = "cfg/data/strands.txt";
+    const WorkingDirectory cwd(dir);
+    REQUIRE(fs::exists("cfg/data/strands.txt"));
+    const RunPlan plan = plan_runs(config, file);
+    RunContext quiet;
+    quiet.quiet = true;
+    const std::string expected =
+        file + ": /scene/curves/path: no such file: " + (dir / "cfg" / "cfg" / "data" / "strands.txt").string();
+    CHECK_THROWS_WITH_AS((void)run_point(plan, 0, quiet), doctest::Contains(expected.c_str()), InputError);
+}
+
+TEST_CASE("paths: a missing preset names its key and the places searched") {
+    const std::string file = (scratch("preset") / "run.json").string();
+    json config = json::parse(read_text_file(kTiny));
+    config["cost"] = json::array({"turing-guess", "no-such-preset"});
+    try {
+        (void)plan_runs(config, file);
+        FAIL("no error");
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        CHECK(what.rfind(file + ": /cost/1: no preset named \"no-such-preset\" (searched ", 0) == 0);
+        CHECK(what.find(RTCSIM_SOURCE_DIR "/configs/hw") != std::string::npos);
+    }
+    config["cost"] = "no/such/file.json";
+    CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains("/cost: no such preset file"), InputError);
+    // RTCSIM_PRESET_DIR comes first.
+    const fs::path mine = scratch("preset_dir");
+    json preset = json::parse(read_text_file(RTCSIM_SOURCE_DIR "/configs/hw/turing-guess.json"));
+    preset["name"] = "my-guess";
+    write(mine / "turing-guess.json", preset.dump());
+    ::setenv("RTCSIM_PRESET_DIR", mine.c_str(), 1);
+    CHECK(preset_dirs().front() == mine);
+    CHECK(resolve_preset("turing-guess", file, "/cost/0") == (mine / "turing-guess.json").string());
+    ::unsetenv("RTCSIM_PRESET_DIR");
+    CHECK(resolve_preset("turing-guess", file, "/cost/0") != (mine / "turing-guess.json").string());
+    CHECK(is_preset_name("memory-optix7"));
+    CHECK_FALSE(is_preset_name("memory-optix7.json"));
+    CHECK_FALSE(is_preset_name("../hw/memory-optix7"));
+}
+
+TEST_CASE("output directory: refused when not empty, --force clears only what simulate wrote") {
+    const fs::path out = scratch("outdir");
+    const std::vector<std::string> base{kTiny, "--out", out.string(), "--set", "output.images=false",
+                                        "--set", "workload.width=8", "--set", "workload.height=8"};
+    REQUIRE(simulate(base) == 0);
+    CHECK(fs::exists(out / ".rtcsim-output"));
+    CHECK(simulate(base) == 2);  // not empty
+    write(out / "stale_point" / "report.json", "{}");
+    auto forced = base;
+    forced.push_back("--force");
+    REQUIRE(simulate(forced) == 0);
+    CHECK_FALSE(fs::exists(out / "stale_point"));
+    CHECK(fs::exists(out / "report.json"));
+    // A directory simulate did not write is never emptied.
+    const fs::path foreign = scratch("foreign");
+    write(foreign / "notes.txt", "mine");
+    auto into_foreign = forced;
+    into_foreign[2] = foreign.string();
+    CHECK(simulate(into_foreign) == 2);
+    CHECK(fs::exists(foreign / "notes.txt"));
+}
+
+TEST_CASE("calibrate: an existing output file is refused before tracing, unless --force") {
+    const fs::path dir = scratch("calibrate");
+    const std::string file = (dir / "fit.json").string();
+    const json config = {{"calibrate", {{"output", "../hw/turing-guess.json"}}}};
+    CHECK(calibrate_output_path(config, file, false) == (dir.parent_path() / "hw" / "turing-guess.json").string());
+    write(dir / "taken.json", "{}");
+    const json taken = {{"calibrate", {{"output", "taken.json"}}}};
+    CHECK_THROWS_WITH_AS((void)calibrate_output_path(taken, file, false),
+                         doctest::Contains((file + ": /calibrate/output: " + (dir / "taken.json").string() + " exists").c_str()),
+                         InputError);
+    CHECK(calibrate_output_path(taken, file, true) == (dir / "taken.json").string());
+    const std::string shipped = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/x.json";
+    const json onto_shipped = {{"calibrate", {{"output", "../hw/turing-calibrated.json"}}}};
+    CHECK_THROWS_WITH_AS((void)calibrate_output_path(onto_shipped, shipped, false),
+                         doctest::Contains("is a shipped preset"), InputError);
+}
+
+TEST_CASE("provenance: version, commit, effective config with defaults, presets, threads, date") {
+    const fs::path out = scratch("provenance");
+    REQUIRE(simulate({kTiny, "--out", out.string(), "--set", "output.images=false", "--set", "workload.width=8",
+                      "--set", "workload.height=8"}) == 0);
+    const json p = report_of(out)["provenance"];
+    CHECK(p["git_commit"].is_string());
+    CHECK_FALSE(p["git_commit"].get<std::string>().empty());
+    CHECK(p["threads"]["requested"] == 2);
+    CHECK(p["date"].get<std::string>().size() == 20);
+    CHECK(p["date"].get<std::string>().back() == 'Z');
+    CHECK(p["command_line"][1] == kTiny);
+    // Defaults filled in: the tiny config sets no bvh, traversal or seed.
+    const json& e = p["effective_config"];
+    CHECK(e["bvh"]["width"] == 4);
+    CHECK(e["traversal"]["schedule"] == "immediate");
+    CHECK(e["workload"]["seed"] == 0);
+    CHECK(e["workload"]["width"] == 8);
+    // It parses again as a config, to the same effective config.
+    const RunConfig again = parse_run_config(e, kTiny);
+    CHECK(json(run_config_to_json(again)) == e);
+    // Preset contents as in the files.
+    for (const json& preset : p["presets"]["cost"])
+        CHECK(preset["contents"] == json::parse(read_text_file(preset["file"].get<std::string>())));
+    CHECK(p["presets"]["memory"]["contents"]["name"].is_string());
+}
+
+TEST_CASE("sweep: the first key varies slowest, in the order written") {
+    const std::string text = R"({"sweep": {"scene.tilt_deg": [0, 30], "memory": ["memory-optix7", "memory-dxr"]}})";
+    const std::vector<std::string> order = sweep_key_order(text);
+    REQUIRE(order == std::vector<std::string>{"scene.tilt_deg", "memory"});
+    const auto points = expand_sweep(json::parse(text), "x.json", order);
+    REQUIRE(points.size() == 4);
+    CHECK(points[0].label == "scene.tilt_deg=0 memory=memory-optix7");
+    CHECK(points[1].label == "scene.tilt_deg=0 memory=memory-dxr");
+    CHECK(points[2].label == "scene.tilt_deg=30 memory=memory-optix7");
+    // Without the order, alphabetical (nlohmann sorts keys).
+    CHECK(expand_sweep(json::parse(text), "x.json")[1].label == "memory=memory-optix7 scene.tilt_deg=30");
+    // --set sweep={...} replaces the order; --set sweep.key=[...] appends.
+    CHECK(sweep_key_order(text, {R"(sweep={"b": [1], "a": [2]})"}) == std::vector<std::string>{"b", "a"});
+    CHECK(sweep_key_order(text, {R"(sweep.cost=["turing-guess"])"}).back() == "cost");
+}
+
+TEST_CASE("sweep: points that differ only in presets are re-priced, not traced, with the same results") {
+    const fs::path dir = scratch("reprice");
+    const std::vector<std::string> small{"--set", "output.images=false", "--set", "workload.width=12",
+                                         "--set", "workload.height=12", "--set", "output.rays=false",
+                                         "--set", "output.hits=false"};
+    auto sweep = small;
+    sweep.insert(sweep.end(), {"--set", R"(sweep={"scene.tilt_deg": [0, 30], "memory": ["memory-optix7", "memory-dxr"], "cost": ["turing-guess", "turing-per-ray-calibrated"]})",
+                               kTiny, "--out", (dir / "sweep").string()});
+    REQUIRE(simulate(sweep) == 0);
+    const fs::path point3 = dir / "sweep" / "3_scene.tilt_deg=0_memory=memory-dxr_cost=turing-per-ray-calibrated";
+    REQUIRE(fs::exists(point3 / "report.json"));
+    CHECK(report_of(dir / "sweep" / "0_scene.tilt_deg=0_memory=memory-optix7_cost=turing-guess")["provenance"]["repriced"] == false);
+    CHECK(report_of(point3)["provenance"]["repriced"] == true);
+    CHECK(report_of(dir / "sweep" / "4_scene.tilt_deg=30_memory=memory-optix7_cost=turing-guess")["provenance"]["repriced"] == false);
+    // The same point traced on its own gives the same report.
+    auto single = small;
+    single.insert(single.end(), {"--set", "scene.tilt_deg=0", "--set", "memory=memory-dxr", "--set",
+                                 "cost=turing-per-ray-calibrated", kTiny, "--out", (dir / "single").string()});
+    REQUIRE(simulate(single) == 0);
+    CHECK(comparable(report_of(point3)) == comparable(report_of(dir / "single")));
+}
