@@ -16,6 +16,7 @@ std::optional<CurveFormat> curve_format_from_name(std::string_view name) {
     if (name == "swc") return CurveFormat::Swc;
     if (name == "obj") return CurveFormat::Obj;
     if (name == "txt") return CurveFormat::Txt;
+    if (name == "pbrt") return CurveFormat::Pbrt;
     return std::nullopt;
 }
 
@@ -27,7 +28,7 @@ LoadedCurves load_curves(const std::filesystem::path& file, CurveFormat format) 
         const auto f = ext.empty() ? std::nullopt : curve_format_from_name(ext.substr(1));
         if (!f || *f == CurveFormat::Auto)
             throw InputError(file.string() + ": cannot tell the curve format from the extension \"" +
-                             ext + "\" (use .hair .tfx .trk .swc .obj .txt or name the format)");
+                             ext + "\" (use .hair .tfx .trk .swc .obj .txt .pbrt or name the format)");
         format = *f;
     }
     switch (format) {
@@ -41,6 +42,12 @@ LoadedCurves load_curves(const std::filesystem::path& file, CurveFormat format) 
             if (obj.lines.strand_count() == 0)
                 throw InputError(file.string() + ": no `l` polylines in this OBJ file");
             return {std::move(obj.lines), false};
+        }
+        case CurveFormat::Pbrt: {
+            PbrtScene pbrt = load_pbrt(file);
+            if (pbrt.curves.strand_count() == 0)
+                throw InputError(file.string() + ": no `Shape \"curve\"` in this pbrt file");
+            return {std::move(pbrt.curves), true};
         }
         case CurveFormat::Auto: break;
     }

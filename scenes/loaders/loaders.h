@@ -6,8 +6,11 @@
 
 #include "scenes/scene.h"
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace rtc {
@@ -42,9 +45,46 @@ struct ObjContents {
 };
 [[nodiscard]] ObjContents load_obj(const std::filesystem::path& file);
 
-enum class CurveFormat : std::uint8_t { Auto, Hair, Tfx, Trk, Swc, Obj, Txt };
+// pbrt-v4 scene files (scenes/loaders/pbrt/, docs/scenes.md): `curve` shapes
+// become strands (radius = width / 2), `trianglemesh`, `bilinearmesh`,
+// `loopsubdiv` (its control mesh) and `plymesh` become the mesh, every
+// transform applied and object instances flattened. `Include` and `Import`
+// resolve against the including file's folder, then the main file's (as
+// pbrt-v4 does). Other directives are checked and skipped; so are sphere,
+// disk and cylinder shapes, counted in `skipped_shapes`. Errors name the
+// file, line and token. The limits bound what a small file can make.
+struct PbrtLimits {
+    std::uint64_t max_elements = std::uint64_t{1} << 28;  // points + vertices + triangles, after instancing
+    std::uint64_t max_bytes = std::uint64_t{1} << 32;     // read over the file and everything it includes
+    std::size_t max_include_depth = 32;
+};
+struct PbrtScene {
+    Strands curves;
+    TriangleMesh mesh;
+    std::size_t curve_shapes = 0;  // `curve` shapes loaded, instances counted once per use
+    std::size_t mesh_shapes = 0;
+    std::size_t files = 0;         // the main file plus every Include/Import
+    std::map<std::string, std::size_t> skipped_shapes;
+};
+[[nodiscard]] PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits = {});
+
+// glTF 2.0 (.gltf with embedded or external buffers, .glb) and PLY (ASCII or
+// binary) meshes through assimp: every triangle of every mesh node, node
+// transforms applied; points and lines are dropped, polygons fan-triangulated.
+// The file (and every buffer it names) must be under `max_bytes`; a PLY
+// header is checked first (counts against the file size, errors by line).
+[[nodiscard]] TriangleMesh load_assimp_mesh(const std::filesystem::path& file,
+                                            std::uint64_t max_bytes = std::uint64_t{1} << 31);
+
+enum class MeshFormat : std::uint8_t { Auto, Obj, Gltf, Ply, Pbrt };
+[[nodiscard]] std::optional<MeshFormat> mesh_format_from_name(std::string_view name);
+// Auto picks by extension (.obj .gltf .glb .ply .pbrt); the mesh part only
+// (an OBJ's faces, a pbrt file's meshes).
+[[nodiscard]] TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format = MeshFormat::Auto);
+
+enum class CurveFormat : std::uint8_t { Auto, Hair, Tfx, Trk, Swc, Obj, Txt, Pbrt };
 [[nodiscard]] std::optional<CurveFormat> curve_format_from_name(std::string_view name);
-// Auto picks by extension (.hair .tfx .trk .swc .obj .txt); an unknown
+// Auto picks by extension (.hair .tfx .trk .swc .obj .txt .pbrt); an unknown
 // extension is an InputError.
 [[nodiscard]] LoadedCurves load_curves(const std::filesystem::path& file,
                                        CurveFormat format = CurveFormat::Auto);

@@ -95,7 +95,7 @@ Strands curves_from_file(const JsonReader& c) {
     c.allow_only({"path", "format", "radius", "radius_scale", "follow_hairs", "follow_spread",
                   "follow_tip_separation", "follow_seed"});
     const std::string format_name =
-        c.choice("format", "auto", {"auto", "hair", "tfx", "trk", "swc", "obj", "txt"});
+        c.choice("format", "auto", {"auto", "hair", "tfx", "trk", "swc", "obj", "txt", "pbrt"});
     const std::filesystem::path path = resolve_data_path(c, "path");
     LoadedCurves loaded = load_curves(path, *curve_format_from_name(format_name));
     if (loaded.strands.strand_count() == 0) c.fail("path", "no strands in " + path.string());
@@ -153,9 +153,10 @@ Scene file_scene(const JsonReader& j) {
     }
     if (j.has("mesh")) {
         const JsonReader m = j.child("mesh");
-        m.allow_only({"path"});
+        m.allow_only({"path", "format"});
+        const std::string format = m.choice("format", "auto", {"auto", "obj", "gltf", "glb", "ply", "pbrt"});
         const std::filesystem::path path = resolve_data_path(m, "path");
-        s.mesh = load_obj(path).mesh;
+        s.mesh = load_mesh(path, *mesh_format_from_name(format));
         if (s.mesh.triangles.empty()) m.fail("path", "no faces in " + path.string());
         if (s.name.empty()) s.name = path.string();
     }
