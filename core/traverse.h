@@ -63,10 +63,14 @@ struct BoxRay {
     const __m128 vtmax = _mm_set1_ps(tmax), pad = _mm_set1_ps(kSlabPad), inf = _mm_set1_ps(kInfinity);
     for (std::uint32_t base = 0; base < n; base += 4) {
         // Lanes past the last child repeat it and are masked off below.
-        const auto entry = [&](std::uint32_t k) {
-            return reinterpret_cast<const float*>(child + (base + k < n ? base + k : n - 1));
-        };
-        const float *e0 = entry(0), *e1 = entry(1), *e2 = entry(2), *e3 = entry(3);
+        const float* e0 = reinterpret_cast<const float*>(child + base);
+        const float *e1 = e0 + 8, *e2 = e0 + 16, *e3 = e0 + 24;
+        if (base + 4 > n) {
+            const float* last = reinterpret_cast<const float*>(child + (n - 1));
+            if (base + 1 >= n) e1 = last;
+            if (base + 2 >= n) e2 = last;
+            e3 = last;
+        }
         // Entry floats: lo.x lo.y lo.z hi.x | hi.y hi.z (first count).
         __m128 lx = _mm_loadu_ps(e0), ly = _mm_loadu_ps(e1), lz = _mm_loadu_ps(e2),
                hx = _mm_loadu_ps(e3);
