@@ -25,7 +25,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // Not inlined: `valgrind --tool=callgrind --toggle-collect='*bench_trace_frame*'`
-// counts the traces' instructions only (sim/bench/callgrind_per_ray.sh).
+// counts the traces' instructions only (sim/bench/callgrind_per_ray.sh toggles
+// on BuiltMethod::run instead, which older bench binaries have too).
 [[gnu::noinline]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
                                                 const RayWorkload& frame, const TraceOptions& trace,
                                                 unsigned threads, const CostModel* warp) {
