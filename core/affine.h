@@ -31,7 +31,7 @@ struct Affine {
 
     [[nodiscard]] Vec3 point(const Vec3& p) const { return linear * p + translation; }
     [[nodiscard]] Vec3 vector(const Vec3& v) const { return linear * v; }
-    [[nodiscard]] Ray ray(const Ray& r) const {
+    [[nodiscard, gnu::always_inline]] Ray ray(const Ray& r) const {
         return {point(r.origin), r.tmin, vector(r.direction), r.tmax};
     }
 

@@ -29,7 +29,7 @@ struct Ray {
 
 // Reciprocal of the direction with zero components mapped to a huge finite
 // value of the same sign, so slab tests never compute 0 * inf = NaN.
-[[nodiscard]] inline Vec3 safe_inverse(const Vec3& d) {
+[[nodiscard, gnu::always_inline]] inline Vec3 safe_inverse(const Vec3& d) {
     auto inv = [](float x) {
         constexpr float kBig = 1e30f;
         if (x == 0.0f) return std::signbit(x) ? -kBig : kBig;

@@ -16,6 +16,11 @@
 
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#include <xmmintrin.h>
+#endif
+
 namespace rtc {
 
 enum class TraversalMode { Closest, AnyHit, AllCandidates };
@@ -31,14 +36,97 @@ inline constexpr LevelEvents kBlasEvents{Event::BlasNodeVisit, Event::BlasBoxTes
 // visited node pushes at most width - 1 entries beyond the one popped next.
 inline constexpr int kTraversalStackSize = 96 * 8;
 
+// The ray as the box tests of one traversal use it (broadcast once per call).
+struct BoxRay {
+#if defined(__SSE2__)
+    __m128 ox, oy, oz, ix, iy, iz, tmin;
+    BoxRay(const Vec3& origin, const Vec3& inv_dir, float t0)
+        : ox(_mm_set1_ps(origin.x)), oy(_mm_set1_ps(origin.y)), oz(_mm_set1_ps(origin.z)),
+          ix(_mm_set1_ps(inv_dir.x)), iy(_mm_set1_ps(inv_dir.y)), iz(_mm_set1_ps(inv_dir.z)),
+          tmin(_mm_set1_ps(t0)) {}
+#else
+    Vec3 origin, inv_dir;
+    float tmin;
+    BoxRay(const Vec3& o, const Vec3& i, float t0) : origin(o), inv_dir(i), tmin(t0) {}
+#endif
+};
+
+// Tests children [0, n) of a node (n <= 8) and returns a mask of the hit ones,
+// with their entry distances in tnear[i]. Exactly intersect_box() per child
+// (the same float operations in the same order, min/max with the same operand
+// order, so NaNs and signed zeros resolve alike), four children per SSE
+// instruction: the children's boxes are transposed from the 32-byte entries.
+[[nodiscard, gnu::always_inline]] inline unsigned intersect_children(const BvhEntry* child, std::uint32_t n,
+                                                 const BoxRay& r, float tmax, float* tnear) {
+#if defined(__SSE2__)
+    unsigned mask = 0;
+    const __m128 vtmax = _mm_set1_ps(tmax), pad = _mm_set1_ps(kSlabPad), inf = _mm_set1_ps(kInfinity);
+    for (std::uint32_t base = 0; base < n; base += 4) {
+        // Lanes past the last child repeat it and are masked off below.
+        const float* e0 = reinterpret_cast<const float*>(child + base);
+        const float *e1 = e0 + 8, *e2 = e0 + 16, *e3 = e0 + 24;
+        if (base + 4 > n) {
+            const float* last = reinterpret_cast<const float*>(child + (n - 1));
+            if (base + 1 >= n) e1 = last;
+            if (base + 2 >= n) e2 = last;
+            e3 = last;
+        }
+        // Entry floats: lo.x lo.y lo.z hi.x | hi.y hi.z (first count).
+        __m128 lx = _mm_loadu_ps(e0), ly = _mm_loadu_ps(e1), lz = _mm_loadu_ps(e2),
+               hx = _mm_loadu_ps(e3);
+        _MM_TRANSPOSE4_PS(lx, ly, lz, hx);
+        const auto hi_yz = [](const float* e) {  // hi.y hi.z 0 0
+            return _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(e + 4));
+        };
+        const __m128 b01 = _mm_unpacklo_ps(hi_yz(e0), hi_yz(e1));
+        const __m128 b23 = _mm_unpacklo_ps(hi_yz(e2), hi_yz(e3));
+        const __m128 hy = _mm_movelh_ps(b01, b23), hz = _mm_movehl_ps(b23, b01);
+        const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(lx, r.ox), r.ix), tx1 = _mm_mul_ps(_mm_sub_ps(hx, r.ox), r.ix);
+        const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(ly, r.oy), r.iy), ty1 = _mm_mul_ps(_mm_sub_ps(hy, r.oy), r.iy);
+        const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(lz, r.oz), r.iz), tz1 = _mm_mul_ps(_mm_sub_ps(hz, r.oz), r.iz);
+        // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
+        const auto mn = [](__m128 a, __m128 b) { return _mm_min_ps(b, a); };
+        const auto mx = [](__m128 a, __m128 b) { return _mm_max_ps(b, a); };
+        const __m128 near = mx(mx(mn(tx0, tx1), mn(ty0, ty1)), mx(mn(tz0, tz1), r.tmin));
+        const __m128 far = mn(mn(mx(tx0, tx1), mx(ty0, ty1)), mn(mx(tz0, tz1), vtmax));
+        _mm_storeu_ps(tnear + base, near);
+        // A hit: near <= far * pad, and near finite (intersect_box's +inf is a miss).
+        const __m128 hit = _mm_and_ps(_mm_cmple_ps(near, _mm_mul_ps(far, pad)), _mm_cmpneq_ps(near, inf));
+        mask |= static_cast<unsigned>(_mm_movemask_ps(hit)) << base;
+    }
+    return mask & ((1u << n) - 1u);
+#else
+    unsigned mask = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        tnear[i] = intersect_box(child[i].box, r.origin, r.inv_dir, r.tmin, tmax);
+        if (tnear[i] != kInfinity) mask |= 1u << i;
+    }
+    return mask;
+#endif
+}
+
 template <TraversalMode Mode, LevelEvents Level, class Sink, class LeafFn>
 float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tmin, float tmax,
                Sink& sink, LeafFn&& on_leaf) {
+    if (Mode == TraversalMode::Closest && tmin > tmax) return kInfinity;  // the root is culled
+    const BvhEntry* entries = bvh.entries.data();
+    if (bvh.root.count == (BvhEntry::kInnerBit | 1u) && !entries[bvh.root.first].is_inner()) {
+        // A root over one leaf (the masquerade's unit-box BLAS): the same
+        // events and tests as the loop below, without its stack.
+        sink.on(Level.node_visit);
+        sink.add(Level.box_test, 1);
+        const BvhEntry& leaf = entries[bvh.root.first];
+        const float t = intersect_box(leaf.box, origin, inv_dir, tmin, tmax);
+        if (t == kInfinity || (Mode == TraversalMode::Closest && t > tmax)) return kInfinity;
+        const float hit = on_leaf(leaf.first, leaf.count, tmax);
+        return hit < kInfinity ? hit : kInfinity;
+    }
     struct Pending { std::uint32_t first, count; float tnear; };
     Pending stack[kTraversalStackSize];
     int top = 0;
     stack[top++] = {bvh.root.first, bvh.root.count, tmin};
     float nearest = kInfinity;
+    const BoxRay box_ray(origin, inv_dir, tmin);
     while (top > 0) {
         const Pending p = stack[--top];
         if (Mode == TraversalMode::Closest && p.tnear > tmax) continue;  // culled after a hit
@@ -52,14 +140,16 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
         sink.on(Level.node_visit);
         const std::uint32_t n = p.count & ~BvhEntry::kInnerBit;
         sink.add(Level.box_test, n);
-        const BvhEntry* child = bvh.entries.data() + p.first;
+        const BvhEntry* child = entries + p.first;
         // Hit children go straight onto the stack, kept sorted far to near by
         // insertion so the nearest is popped first (equal distances pop in
         // reverse child order).
         const int base = top;
-        for (std::uint32_t i = 0; i < n; ++i) {
-            const float t = intersect_box(child[i].box, origin, inv_dir, tmin, tmax);
-            if (t == kInfinity) continue;
+        float tnear[8];
+        for (unsigned hits = intersect_children(child, n, box_ray, tmax, tnear); hits;
+             hits &= hits - 1) {
+            const int i = __builtin_ctz(hits);
+            const float t = tnear[i];
             int j = top++;
             for (; j > base && stack[j - 1].tnear < t; --j) stack[j] = stack[j - 1];
             stack[j] = {child[i].first, child[i].count, t};

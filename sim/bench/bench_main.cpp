@@ -6,12 +6,15 @@
 // rerun them.
 #include "core/input_error.h"
 #include "core/parallel.h"
+#include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
 #include "sim/methods/method.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <exception>
 #include <fstream>
@@ -31,10 +34,13 @@ constexpr const char* kHelp =
     "                 3: bundle N=100000 r=0.0005 tilt 30 (obb)\n"
     "                 4: Sintel hair + head (capsules, phantom)   5: 2 M fur, path tracing\n"
     "  --scale        run only the scale case: 2^24 obb instances, peak memory (heavy)\n"
-    "  --threads N    threads of the 'all threads' figure (default: all cores)\n"
+    "  --threads LIST thread counts to time, e.g. 1,2 (default: 1 and all cores); one\n"
+    "                 number N > 1 times 1 and N; scaling is against the first count\n"
     "  --repeat K     best of K traces per figure (default 3)\n"
     "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
     "  --json FILE    also write the figures as JSON\n"
+    "  --compare A.json B.json  print B / A ratios of two --json files (rates, builds)\n"
+    "                 and whether their event totals are identical; traces nothing\n"
     "  --methods LIST only these methods (any registered name) where a case has them\n"
     "  --execution M  per_ray (default) or warp: trace in warps priced under\n"
     "                 --warp-preset (default configs/hw/turing-calibrated.json)\n"
@@ -50,7 +56,26 @@ struct Cli {
     std::string json_file;
     int pixels = 0;  // 0: each case's own resolution
     std::set<std::string> methods{"ref", "obb"};
+    std::string compare_a, compare_b;  // --compare
 };
+
+std::vector<unsigned> parse_thread_list(const std::string& a, const std::string& v) {
+    std::vector<unsigned> out;
+    std::stringstream list(v);
+    for (std::string item; std::getline(list, item, ',');) {
+        std::size_t used = 0;
+        int n = 0;
+        try { n = std::stoi(item, &used); } catch (const std::exception&) { used = 0; }
+        if (used != item.size() || item.empty() || n < 1)
+            throw InputError("bench: " + a + ": expected thread counts >= 1 separated by commas, got \"" +
+                             v + "\"");
+        if (std::find(out.begin(), out.end(), static_cast<unsigned>(n)) == out.end())
+            out.push_back(static_cast<unsigned>(n));
+    }
+    if (out.empty()) throw InputError("bench: " + a + ": empty list");
+    if (out.size() == 1 && out[0] > 1) out.insert(out.begin(), 1u);  // as before: 1 and N
+    return out;
+}
 
 Cli parse(int argc, char** argv) {
     Cli cli;
@@ -86,7 +111,10 @@ Cli parse(int argc, char** argv) {
         } else if (a == "--scale") {
             cli.scale = true;
         } else if (a == "--threads") {
-            cli.bench.threads = static_cast<unsigned>(number(1));
+            cli.bench.threads = parse_thread_list(a, value());
+        } else if (a == "--compare") {
+            cli.compare_a = value();
+            cli.compare_b = value();
         } else if (a == "--repeat") {
             cli.bench.repeat = number(1);
         } else if (a == "--data") {
@@ -123,23 +151,41 @@ void print_run(const RunFigures& r) {
     std::printf("  %s (%s): %llu primitives, %llu triangles, scene %.2f s\n", r.label.c_str(),
                 r.kind.c_str(), static_cast<unsigned long long>(r.primitives),
                 static_cast<unsigned long long>(r.triangles), r.load_seconds);
-    std::printf("    %-6s %9s %10s %12s %12s %8s %10s %10s %9s\n", "method", "build s", "rays",
-                "Mrays/s 1t", "Mrays/s nt", "scaling", "IS/ray", "boxes/ray", "B/prim");
+    std::printf("    %-6s %9s %10s", "method", "build s", "rays");
+    if (!r.methods.empty())
+        for (const ThreadRate& t : r.methods.front().rates)
+            std::printf("  %2ut Mrays/s best/median scaling", t.threads);
+    std::printf(" %10s %10s %9s\n", "IS/ray", "boxes/ray", "B/prim");
     for (const MethodFigures& m : r.methods) {
-        const double scaling =
-            m.rays_per_second_1t > 0.0 ? m.rays_per_second_nt / m.rays_per_second_1t : 0.0;
-        std::printf("    %-6s %9.3f %10llu %12.3f %9.3f(%u) %7.2fx %10.2f %10.2f %9.1f%s\n",
-                    m.method.c_str(), m.build_seconds, static_cast<unsigned long long>(m.rays),
-                    m.rays_per_second_1t * 1e-6, m.rays_per_second_nt * 1e-6, m.threads, scaling,
-                    m.is_calls_per_ray, m.box_tests_per_ray, m.bytes_per_primitive,
-                    m.counts_match ? "" : "  COUNTS DIFFER BETWEEN RUNS");
+        std::printf("    %-6s %9.3f %10llu", m.method.c_str(), m.build_seconds,
+                    static_cast<unsigned long long>(m.rays));
+        for (const ThreadRate& t : m.rates) {
+            const double base = m.rates.front().best_rays_per_second;
+            std::printf("  %14.3f / %7.3f %6.2fx", t.best_rays_per_second * 1e-6,
+                        t.median_rays_per_second * 1e-6,
+                        base > 0.0 ? t.best_rays_per_second / base : 0.0);
+        }
+        std::printf(" %10.2f %10.2f %9.1f%s\n", m.is_calls_per_ray, m.box_tests_per_ray,
+                    m.bytes_per_primitive, m.counts_match ? "" : "  COUNTS DIFFER BETWEEN RUNS");
     }
+}
+
+// The 1-minute load average (other processes compete for the cores).
+double load_average() {
+    double l[1] = {0.0};
+    return getloadavg(l, 1) == 1 ? l[0] : -1.0;
 }
 
 nlohmann::json to_json(const RunFigures& r) {
     nlohmann::json j = {{"label", r.label}, {"kind", r.kind}, {"primitives", r.primitives},
                         {"triangles", r.triangles}, {"load_seconds", r.load_seconds}};
     for (const MethodFigures& m : r.methods) {
+        nlohmann::json rates = nlohmann::json::array();
+        for (const ThreadRate& t : m.rates)
+            rates.push_back({{"threads", t.threads},
+                             {"best_rays_per_second", t.best_rays_per_second},
+                             {"median_rays_per_second", t.median_rays_per_second},
+                             {"best_seconds", t.best_seconds}});
         nlohmann::json events;
         for (std::size_t e = 0; e < kEventCount; ++e)
             events[std::string(kEventNames[e])] = m.totals.n[e];
@@ -149,6 +195,7 @@ nlohmann::json to_json(const RunFigures& r) {
                                 {"rays_per_second_1_thread", m.rays_per_second_1t},
                                 {"rays_per_second_all_threads", m.rays_per_second_nt},
                                 {"threads", m.threads},
+                                {"rates", rates},
                                 {"is_calls_per_ray", m.is_calls_per_ray},
                                 {"box_tests_per_ray", m.box_tests_per_ray},
                                 {"bytes_per_primitive", m.bytes_per_primitive},
@@ -163,19 +210,32 @@ nlohmann::json to_json(const RunFigures& r) {
 int main(int argc, char** argv) {
     try {
         Cli cli = parse(argc, argv);
+        if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);
         std::vector<BenchCase> cases;
         if (cli.scale) {
             cases.push_back(scale_case());
-            cli.bench.single_thread = false;  // one all-threads trace is enough here
+            cli.bench.threads = {0};  // one all-threads trace is enough here
             cli.bench.repeat = 1;
         } else {
             for (BenchCase& c : standard_cases(cli.data))
                 if (cli.cases.count(c.id)) cases.push_back(std::move(c));
         }
-        const unsigned threads = cli.bench.threads ? cli.bench.threads : hardware_threads();
-        std::printf("bench: %u threads for the 'nt' figures, best of %d traces; counting sinks on\n",
-                    threads, cli.bench.repeat);
-        nlohmann::json out = {{"threads", threads}, {"repeat", cli.bench.repeat}};
+        nlohmann::json counts = nlohmann::json::array();
+        unsigned threads = 1;
+        std::string listed;
+        for (const unsigned t : cli.bench.threads) {
+            const unsigned n = t ? t : hardware_threads();
+            counts.push_back(n);
+            threads = std::max(threads, n);
+            if (!listed.empty()) listed.push_back(',');
+            listed.append(std::to_string(n));
+        }
+        std::printf("bench: threads %s (%u cores), best and median of %d traces; counting sinks on; "
+                    "load average %.2f\n",
+                    listed.c_str(), hardware_threads(), cli.bench.repeat, load_average());
+        nlohmann::json out = {{"threads", threads}, {"thread_counts", counts},
+                              {"cores", hardware_threads()}, {"repeat", cli.bench.repeat},
+                              {"load_average_start", load_average()}};
         for (BenchCase& c : cases) {
             for (BenchRun& run : c.runs) {
                 if (cli.pixels > 0)
@@ -199,7 +259,9 @@ int main(int argc, char** argv) {
                 print_run(r);
                 jc["runs"].push_back(to_json(r));
             }
+            std::printf("  (load average %.2f)\n", load_average());
             std::fflush(stdout);
+            jc["load_average_end"] = load_average();
             out["cases"].push_back(jc);
         }
         const double peak_mib = static_cast<double>(peak_rss_bytes()) / (1024.0 * 1024.0);

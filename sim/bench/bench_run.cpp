@@ -24,8 +24,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-FrameResult trace_frame(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
-                        const TraceOptions& trace, unsigned threads, const CostModel* warp) {
+// Not inlined: `valgrind --tool=callgrind --toggle-collect='*bench_trace_frame*'`
+// counts the traces' instructions only (sim/bench/callgrind_per_ray.sh toggles
+// on BuiltMethod::run instead, which older bench binaries have too).
+[[gnu::noinline]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
+                                                const RayWorkload& frame, const TraceOptions& trace,
+                                                unsigned threads, const CostModel* warp) {
     FrameOptions fo;
     fo.threads = threads;
     fo.progress = false;
@@ -36,22 +40,30 @@ FrameResult trace_frame(const BuiltMethod& method, const Geometry& g, const RayW
     return method.run(g, frame, trace, fo);
 }
 
-// Best rate of `repeat` traces; every trace must count the same events.
-double best_rate(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
-                 const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m,
-                 const CostModel* warp) {
-    double best = 0.0;
+// Best and median rate of `repeat` traces; every trace must count the same events.
+ThreadRate time_traces(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
+                       const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m,
+                       const CostModel* warp) {
+    std::vector<double> seconds;
+    std::uint64_t rays = 0;
     for (int i = 0; i < repeat; ++i) {
-        const FrameResult r = trace_frame(method, g, frame, trace, threads, warp);
-        if (m.rays == 0) {
+        const FrameResult r = bench_trace_frame(method, g, frame, trace, threads, warp);
+        if (m.rates.empty() && i == 0) {  // the first trace of this method
             m.rays = r.rays_traced;
             m.totals = r.totals;
-        } else if (!(r.totals == m.totals)) {
+        } else if (!(r.totals == m.totals) || r.rays_traced != m.rays) {
             m.counts_match = false;
         }
-        best = std::max(best, static_cast<double>(r.rays_traced) / r.trace_seconds);
+        rays = r.rays_traced;
+        seconds.push_back(std::max(r.trace_seconds, 1e-9));
     }
-    return best;
+    std::sort(seconds.begin(), seconds.end());
+    ThreadRate rate;
+    rate.threads = threads;
+    rate.best_seconds = seconds.front();
+    rate.best_rays_per_second = static_cast<double>(rays) / seconds.front();
+    rate.median_rays_per_second = static_cast<double>(rays) / seconds[seconds.size() / 2];
+    return rate;
 }
 
 }  // namespace
@@ -81,7 +93,8 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     RayWorkload frame;
     frame.camera = make_camera(c.workload, geometry_bounds(geometry));
     frame.path = path_options(c.workload);
-    const unsigned threads = o.threads ? o.threads : hardware_threads();
+    std::vector<unsigned> thread_counts;
+    for (const unsigned t : o.threads) thread_counts.push_back(t ? t : hardware_threads());
     std::optional<CostModel> warp;
     if (!o.warp_preset.empty()) warp = load_cost_model(o.warp_preset);
     if (warp && !warp->execution.warp())
@@ -91,7 +104,6 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     for (const std::string& name : c.methods) {
         MethodFigures m;
         m.method = name;
-        m.threads = threads;
         const auto t_build = std::chrono::steady_clock::now();
         const std::unique_ptr<BuiltMethod> built = find_method(name)->build(geometry, c.build);
         m.build_seconds = seconds_since(t_build);
@@ -99,9 +111,14 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
                                 static_cast<double>(std::max<std::uint64_t>(out.primitives, 1));
         std::fprintf(stderr, "  %s %s: built in %.2f s, tracing...\n", run.label.c_str(),
                      m.method.c_str(), m.build_seconds);
-        if (o.single_thread)
-            m.rays_per_second_1t = best_rate(*built, geometry, frame, c.trace, 1, o.repeat, m, warp_ptr);
-        m.rays_per_second_nt = best_rate(*built, geometry, frame, c.trace, threads, o.repeat, m, warp_ptr);
+        for (const unsigned t : thread_counts) {
+            m.rates.push_back(time_traces(*built, geometry, frame, c.trace, t, o.repeat, m, warp_ptr));
+            if (t == 1) m.rays_per_second_1t = m.rates.back().best_rays_per_second;
+            if (t >= m.threads) {
+                m.threads = t;
+                m.rays_per_second_nt = m.rates.back().best_rays_per_second;
+            }
+        }
         const double rays = static_cast<double>(std::max<std::uint64_t>(m.rays, 1));
         m.is_calls_per_ray = static_cast<double>(m.totals[Event::IsCall]) / rays;
         m.box_tests_per_ray =

@@ -13,25 +13,35 @@
 namespace rtc {
 
 struct BenchOptions {
-    unsigned threads = 0;  // the "all threads" figure; 0: all cores
+    // Thread counts timed, in order (0 stands for all cores); scaling is
+    // reported against the first. Default: 1 and all cores.
+    std::vector<unsigned> threads{1, 0};
     int repeat = 3;        // timings: best of this many traces (the machine is shared)
-    bool single_thread = true;  // also time 1 thread (off for the scale case)
     // Trace in warps priced under this preset (the SIMT model); empty: per ray.
     std::string warp_preset;
+};
+
+// One thread count's timings: best and median of `repeat` traces.
+struct ThreadRate {
+    unsigned threads = 0;
+    double best_rays_per_second = 0.0;
+    double median_rays_per_second = 0.0;
+    double best_seconds = 0.0;
 };
 
 struct MethodFigures {
     std::string method;
     double build_seconds = 0.0;
     std::uint64_t rays = 0;
-    double rays_per_second_1t = 0.0;  // best of `repeat`
-    double rays_per_second_nt = 0.0;
-    unsigned threads = 0;
+    std::vector<ThreadRate> rates;    // per BenchOptions::threads entry
+    double rays_per_second_1t = 0.0;  // best of `repeat` at 1 thread (0: not timed)
+    double rays_per_second_nt = 0.0;  // best of `repeat` at the largest thread count
+    unsigned threads = 0;             // that largest thread count
     double is_calls_per_ray = 0.0;
     double box_tests_per_ray = 0.0;   // TLAS + BLAS
     double bytes_per_primitive = 0.0; // TwoLevel (TLAS, instances, BLASes) / primitives
     EventTotals totals;
-    bool counts_match = true;         // 1-thread and n-thread totals identical
+    bool counts_match = true;         // totals identical over every trace and thread count
 };
 
 struct RunFigures {

@@ -116,15 +116,21 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
     const std::size_t tiles = frame.from_camera
                                   ? static_cast<std::size_t>(frame.camera.height)
                                   : (frame.rays.size() + kRaysPerTile - 1) / kRaysPerTile;
-    struct Tile {
+    // Each tile is written by one task only, at its end (the task counts into
+    // locals), on its own cache lines: no line is shared between threads'
+    // tiles while they run.
+    struct alignas(64) Tile {
         EventTotals totals;
         std::vector<Ray> rays;
         std::vector<TraceHit> hits;
         std::uint64_t rays_traced = 0;
     };
     const auto [first, last] = band_range(tiles, fo.band, fo.bands);
+    struct alignas(64) Scratch {
+        TraceScratch s;
+    };
     std::vector<Tile> tile_out(last - first);
-    std::vector<TraceScratch> scratch(threads);
+    std::vector<Scratch> scratch(threads);
     if (frame.from_camera) {
         out.width = frame.camera.width;
         out.height = frame.camera.height;
@@ -136,14 +142,17 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     Progress progress(fo.label, last - first, fo.progress);
 
-    parallel_for(last - first, threads, [&, first = first](std::size_t i, unsigned thread) {
-        const std::size_t tile = first + i;
-        Tile& t = tile_out[i];
-        const auto trace = [&](const Ray& ray, RayCounts& into) {
-            CountingSink sink;
-            const TraceHit hit = tracer(ray, sink, scratch[thread]);
-            into += sink.ray;
-            ++t.rays_traced;
+    parallel_for(last - first, threads, [&, first = first](std::size_t slot, unsigned thread) {
+        const std::size_t tile = first + slot;
+        Tile& t = tile_out[slot];
+        TraceScratch& sc = scratch[thread].s;
+        EventTotals totals;
+        std::uint64_t rays_traced = 0;
+        // Every ray of a pixel (or of a ray-list tile) counts into one sink:
+        // the per-pixel sums without a per-ray flush.
+        const auto trace = [&](const Ray& ray, CountingSink& sink) {
+            const TraceHit hit = tracer(ray, sink, sc);
+            ++rays_traced;
             if (fo.record_rays) t.rays.push_back(ray);
             if (fo.record_hits) t.hits.push_back(hit);
             return hit;
@@ -152,25 +161,28 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
             const auto py = static_cast<std::uint32_t>(tile);
             for (std::uint32_t px = 0; px < static_cast<std::uint32_t>(out.width); ++px) {
                 const std::size_t pixel = static_cast<std::size_t>(py) * out.width + px;
-                RayCounts counts;
+                CountingSink sink;
                 Vec3 sum{0.0f};
                 for (std::uint32_t s = 0; s < frame.path.spp; ++s)
                     sum += trace_path(cam, px, py, s, frame.path,
-                                      [&](const Ray& ray, std::uint32_t) { return trace(ray, counts); })
+                                      [&](const Ray& ray, std::uint32_t) { return trace(ray, sink); })
                                .radiance;
-                out.pixel_counts[pixel] = counts;
+                out.pixel_counts[pixel] = sink.ray;
                 out.radiance[pixel] = sum / static_cast<float>(frame.path.spp);
-                t.totals.add(counts);
+                totals.add(sink.ray);
             }
         } else {
+            // Per ray: the totals are 64-bit, a tile's sum in 32 bits could wrap.
             const std::size_t end = std::min(frame.rays.size(), (tile + 1) * kRaysPerTile);
             for (std::size_t i = tile * kRaysPerTile; i < end; ++i) {
-                RayCounts counts;
-                trace(frame.rays[i], counts);
-                out.ray_counts[i] = counts;
-                t.totals.add(counts);
+                CountingSink sink;
+                trace(frame.rays[i], sink);
+                out.ray_counts[i] = sink.ray;
+                totals.add(sink.ray);
             }
         }
+        t.totals = totals;
+        t.rays_traced = rays_traced;
         progress.advance(1);
     }, /*grain=*/1);  // one row per hand-out: rows through the scene cost far more than sky rows
     progress.finish();

@@ -130,7 +130,7 @@ private:
         return candidate.t;
     }
 
-    float run_program(std::uint32_t index, Ray ray, float tmax) {
+    [[gnu::always_inline]] float run_program(std::uint32_t index, Ray ray, float tmax) {
         ray.tmax = tmax;
         if constexpr (Sink::kCounts) {
             if (scratch_.profiles) {  // the call's events into the ray's and apart

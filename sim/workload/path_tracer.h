@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <utility>
 
 namespace rtc {
@@ -93,7 +94,9 @@ template <class TraceFn>
                                     const PathOptions& opt, TraceFn&& trace) {
     PathSample out;
     Ray ray = primary_ray(frame, px, py, sample, opt.spp, opt.seed);
-    const SampleRng rng(opt.seed, px, py, sample);
+    // The bounces' random stream, made at the first bounce (camera rays that
+    // end the path, as all primary-only workloads do, never need it).
+    std::optional<SampleRng> rng;
     Vec3 throughput{1.0f};
     for (std::uint32_t depth = 0;; ++depth) {
         const TraceHit hit = trace(std::as_const(ray), depth);
@@ -109,19 +112,20 @@ template <class TraceFn>
             break;
         }
         if (depth >= opt.bounces) break;
+        if (!rng) rng.emplace(opt.seed, px, py, sample);
         const Vec3 facing = cos_in > 0.0f ? -hit.normal : hit.normal;
         throughput *= albedo_of(opt, hit.geom);
         if (opt.russian_roulette && depth + 1 >= opt.roulette_min_bounce) {
             const float survive =
                 std::clamp(std::max({throughput.x, throughput.y, throughput.z}), 0.05f, 1.0f);
-            if (rng.uniform(rng_dim::bounce(depth, 2)) >= survive) break;
+            if (rng->uniform(rng_dim::bounce(depth, 2)) >= survive) break;
             throughput /= survive;
         }
         const Vec3 p = ray.at(hit.t);
         const float distance = hit.t * glm::length(ray.direction);
         ray.origin = offset_origin(p, facing, distance, opt.ray_offset);
-        ray.direction = cosine_direction(facing, rng.uniform(rng_dim::bounce(depth, 0)),
-                                         rng.uniform(rng_dim::bounce(depth, 1)));
+        ray.direction = cosine_direction(facing, rng->uniform(rng_dim::bounce(depth, 0)),
+                                         rng->uniform(rng_dim::bounce(depth, 1)));
         ray.tmin = 0.0f;
         ray.tmax = kInfinity;
     }
