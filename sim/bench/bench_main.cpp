@@ -9,6 +9,9 @@
 #include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
 #include "sim/methods/method.h"
+#include "sim/util/paths.h"
+
+#include <CLI/CLI.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -43,10 +46,11 @@ constexpr const char* kHelp =
     "                 and whether their event totals are identical; traces nothing\n"
     "  --methods LIST only these methods (any registered name) where a case has them\n"
     "  --execution M  per_ray (default) or warp: trace in warps priced under\n"
-    "                 --warp-preset (default configs/hw/turing-calibrated.json)\n"
-    "  --warp-preset F the warp preset of --execution warp\n"
+    "                 --warp-preset (default turing-calibrated)\n"
+    "  --warp-preset P the warp preset of --execution warp, by name or path\n"
     "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
-    "  --help         this text\n";
+    "  --help         this text\n"
+    "Options take --opt value or --opt=value.\n";
 
 struct Cli {
     std::set<int> cases{1, 2, 3, 4, 5};
@@ -77,73 +81,89 @@ std::vector<unsigned> parse_thread_list(const std::string& a, const std::string&
     return out;
 }
 
+// The options on CLI11 (as simulate's): `--opt value` and `--opt=value`,
+// errors naming the option, exit 2.
 Cli parse(int argc, char** argv) {
     Cli cli;
-    bool warp = false;
-    std::string warp_preset = "configs/hw/turing-calibrated.json";
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw InputError("bench: " + a + " needs a value");
-            return argv[++i];
-        };
-        const auto number = [&](int lo) {
-            const std::string v = value();
-            std::size_t used = 0;
-            int n = 0;
-            try { n = std::stoi(v, &used); } catch (const std::exception&) { used = 0; }
-            if (used != v.size() || n < lo)
-                throw InputError("bench: " + a + ": expected an integer >= " + std::to_string(lo) +
-                                 ", got \"" + v + "\"");
-            return n;
-        };
-        if (a == "--help" || a == "-h") {
-            std::cout << kHelp;
-            std::exit(0);
-        } else if (a == "--cases") {
-            cli.cases.clear();
-            std::stringstream list(value());
-            for (std::string item; std::getline(list, item, ',');) {
-                if (item.size() != 1 || item[0] < '1' || item[0] > '5')
-                    throw InputError("bench: --cases: unknown case \"" + item + "\" (1..5)");
-                cli.cases.insert(item[0] - '0');
-            }
-        } else if (a == "--scale") {
-            cli.scale = true;
-        } else if (a == "--threads") {
-            cli.bench.threads = parse_thread_list(a, value());
-        } else if (a == "--compare") {
-            cli.compare_a = value();
-            cli.compare_b = value();
-        } else if (a == "--repeat") {
-            cli.bench.repeat = number(1);
-        } else if (a == "--data") {
-            cli.data = value();
-        } else if (a == "--methods") {
-            cli.methods.clear();
-            std::stringstream list(value());
-            for (std::string item; std::getline(list, item, ',');) {
-                if (!find_method(item))
-                    throw InputError("bench: --methods: unknown method \"" + item + "\" (" +
-                                     method_names_list() + ")");
-                cli.methods.insert(item);
-            }
-        } else if (a == "--execution") {
-            const std::string v = value();
-            if (v != "per_ray" && v != "warp")
-                throw InputError("bench: --execution: expected per_ray or warp, got \"" + v + "\"");
-            warp = v == "warp";
-        } else if (a == "--warp-preset") {
-            warp_preset = value();
-        } else if (a == "--pixels") {
-            cli.pixels = number(1);
-        } else if (a == "--json") {
-            cli.json_file = value();
-        } else {
-            throw InputError("bench: unknown option \"" + a + "\" (see --help)");
+    CLI::App app{"bench"};
+    app.set_help_flag();  // kHelp is the help text
+    bool help = false, scale = false;
+    std::string cases, threads, repeat, data, methods, execution, warp_preset = "turing-calibrated", pixels, json;
+    std::vector<std::string> compare;
+    app.add_flag("-h,--help", help);
+    app.add_flag("--scale", scale);
+    for (const auto& [name, value] :
+         {std::pair{"--cases", &cases}, {"--threads", &threads}, {"--repeat", &repeat}, {"--data", &data},
+          {"--methods", &methods}, {"--execution", &execution}, {"--warp-preset", &warp_preset},
+          {"--pixels", &pixels}, {"--json", &json}})
+        app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    app.add_option("--compare", compare)->expected(2);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        std::string what = e.what();
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr)
+            throw InputError("bench: unknown option or argument: " + what.substr(what.rfind(": ") + 2) +
+                             " (see --help)");
+        throw InputError("bench: " + what + " (see --help)");
+    }
+    if (help) {
+        std::cout << kHelp;
+        std::exit(0);
+    }
+    const auto given = [&](const char* name) { return app.count(name) > 0; };
+    // CLI11 takes the next argument as a value even when it is an option.
+    const auto value = [&](const char* name, const std::string& v) -> const std::string& {
+        if (v.rfind("--", 0) == 0 || v.empty())
+            throw InputError(std::string("bench: ") + name + " needs a value (got \"" + v + "\"; see --help)");
+        return v;
+    };
+    const auto number = [&](const char* name, const std::string& v, int lo) {
+        std::size_t used = 0;
+        int n = 0;
+        try { n = std::stoi(value(name, v), &used); } catch (const std::exception&) { used = 0; }
+        if (used != v.size() || n < lo)
+            throw InputError(std::string("bench: ") + name + ": expected an integer >= " + std::to_string(lo) +
+                             ", got \"" + v + "\"");
+        return n;
+    };
+    const auto items = [](const std::string& list) {
+        std::vector<std::string> out;
+        std::stringstream in(list);
+        for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+        return out;
+    };
+    cli.scale = scale;
+    if (given("--cases")) {
+        cli.cases.clear();
+        for (const std::string& item : items(value("--cases", cases))) {
+            if (item.size() != 1 || item[0] < '1' || item[0] > '5')
+                throw InputError("bench: --cases: unknown case \"" + item + "\" (1..5)");
+            cli.cases.insert(item[0] - '0');
         }
     }
-    if (warp) cli.bench.warp_preset = warp_preset;
+    if (given("--threads")) cli.bench.threads = parse_thread_list("--threads", value("--threads", threads));
+    if (given("--compare")) {
+        cli.compare_a = value("--compare", compare.at(0));
+        cli.compare_b = value("--compare", compare.at(1));
+    }
+    if (given("--repeat")) cli.bench.repeat = number("--repeat", repeat, 1);
+    if (given("--data")) cli.data = value("--data", data);
+    if (given("--methods")) {
+        cli.methods.clear();
+        for (const std::string& item : items(value("--methods", methods))) {
+            if (!find_method(item))
+                throw InputError("bench: --methods: unknown method \"" + item + "\" (" + method_names_list() + ")");
+            cli.methods.insert(item);
+        }
+    }
+    if (given("--execution") && value("--execution", execution) != "per_ray" && execution != "warp")
+        throw InputError("bench: --execution: expected per_ray or warp, got \"" + execution + "\"");
+    if (given("--pixels")) cli.pixels = number("--pixels", pixels, 1);
+    if (given("--json")) cli.json_file = value("--json", json);
+    // A preset by name (searched like simulate's) or by path.
+    if (execution == "warp")
+        cli.bench.warp_preset = resolve_preset(value("--warp-preset", warp_preset), "bench", "--warp-preset");
     return cli;
 }
 
