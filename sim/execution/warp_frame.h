@@ -61,9 +61,9 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     const bool keep_rays = fo.record_rays || fo.record_hits;
     Progress progress(fo.label, last - first, fo.progress);
 
-    parallel_for(last - first, threads, [&, first = first](std::size_t i, unsigned thread) {
-        const std::size_t task = first + i;
-        Task& t = task_out[i];
+    parallel_for(last - first, threads, [&, first = first](std::size_t slot, unsigned thread) {
+        const std::size_t task = first + slot;
+        Task& t = task_out[slot];
         t.warp.resize(presets);
         TraceScratch& sc = scratch[thread];
         std::vector<WaveWork>& wv = waves[thread];
