@@ -137,8 +137,11 @@ SweepAxis make_axis(std::vector<std::string> keys, const std::vector<RunResult>&
 std::vector<SweepAxis> sweep_axes(const std::vector<RunResult>& runs) {
     std::vector<std::vector<std::string>> groups;
     for (const RunResult& r : runs)
-        for (const auto& [k, v] : r.sweep_values.items())
-            if (std::none_of(groups.begin(), groups.end(), [&](const auto& g) { return g[0] == k; })) groups.push_back({k});
+        for (const auto& item : r.sweep_values.items()) {
+            const std::string key = item.key();  // (clang 14 cannot capture a structured binding)
+            if (std::none_of(groups.begin(), groups.end(), [&](const auto& g) { return g[0] == key; }))
+                groups.push_back({key});
+        }
     std::erase_if(groups, [&](const auto& g) { return tuples(runs, g).size() < 2; });  // constant keys
     for (bool merged = true; merged;) {
         merged = false;

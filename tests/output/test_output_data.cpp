@@ -75,7 +75,9 @@ void check_arrays(const fs::path& dir, bool image) {
     const nlohmann::json side = json_at(dir / "arrays.json");
     REQUIRE(side["events"].size() == kEventCount);
     CHECK(side["events"][0] == std::string(kEventNames[0]));
-    for (const auto& [name, m] : report["methods"].items()) {
+    for (const auto& item : report["methods"].items()) {
+        const std::string name = item.key();  // (clang 14 cannot capture a structured binding)
+        const nlohmann::json& m = item.value();
         CAPTURE(name);
         const NpyArray counts = read_npy((dir / ("counts_" + name + ".npy")).string());
         CHECK(counts.type == NpyType::U32);
@@ -90,7 +92,9 @@ void check_arrays(const fs::path& dir, bool image) {
         const std::vector<double> sums = column_sums(counts, kEventCount);
         for (std::size_t e = 0; e < kEventCount; ++e)
             CHECK(sums[e] == m["events"][std::string(kEventNames[e])]["total"].get<double>());
-        for (const auto& [preset, c] : m["cycles"].items()) {
+        for (const auto& priced : m["cycles"].items()) {
+            const std::string preset = priced.key();
+            const nlohmann::json& c = priced.value();
             CAPTURE(preset);
             const nlohmann::json& entry = side["methods"][name]["cycles"][preset];
             if (!entry.contains("file")) {
