@@ -212,11 +212,12 @@ private:
     std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
                             const Split& best, Bounds& left, Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
+        const auto plane = static_cast<float>(best.bin);
         if (n == 1) {
             std::uint32_t n_left = 0;
             for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
             return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
-                return map.of(src[i])[best.axis] < best.bin;
+                return map.below(src[i], best.axis, plane);
             }, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
@@ -232,7 +233,7 @@ private:
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = map.of(src[i])[best.axis] < best.bin;
+                const bool goes_left = map.below(src[i], best.axis, plane);
                 dst[goes_left ? l++ : r++] = src[i];
                 parts[k][goes_left ? 0 : 1].add(src[i]);
             }

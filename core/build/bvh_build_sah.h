@@ -51,6 +51,13 @@ struct BinMap {
         return b > last ? last : b;
 #endif
     }
+    // of(r)[axis] < bin for a plane 1 <= bin <= bins - 1, on one lane: the
+    // clamped bin is below `bin` exactly when the unclamped x is (x >= 2^31
+    // and NaN go to bin 0, which is always below).
+    [[nodiscard]] bool below(const Ref& r, int axis, float bin) const {
+        const float x = (r.centroid[axis] - lo[axis]) * scale[axis];
+        return !(x >= bin && x < 2147483648.0f);
+    }
 };
 
 struct Bins {
