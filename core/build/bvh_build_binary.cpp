@@ -44,7 +44,7 @@ struct Shared {
     const BuildOptions& options;
     int bins;
     std::array<std::unique_ptr<Ref[]>, 2> refs;
-    std::vector<BinaryNode> nodes;
+    BinaryNodes nodes;
     std::vector<std::uint32_t>& prim_ids;
 };
 
@@ -308,8 +308,11 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
 std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root_bounds,
                                                    unsigned threads) {
     const auto n = static_cast<std::uint32_t>(s.prim_ids.size());
-    s.nodes.resize(2 * std::size_t{n});
     const std::uint32_t task_size = threads > 1 ? std::max(kMinTask, n / (8 * threads)) : n;
+    // Room for the nodes above the tasks too (usually fewer than 4 n /
+    // task_size), so that appending them does not copy the whole array.
+    s.nodes.reserve(2 * std::size_t{n} + 4 * std::size_t{n / task_size} + 16);
+    s.nodes.resize(2 * std::size_t{n});
     std::vector<Task> stack, tasks;
     const auto place = [&](Task t) {
         if (t.end - t.begin <= task_size) {
