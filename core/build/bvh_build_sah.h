@@ -73,8 +73,9 @@ struct Bins {
     void add(const Ref& r, I4 b) {
         const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
         for (int axis = 0; axis < 3; ++axis) {
-            box[axis][b[axis]].extend(rlo, rhi);
-            ++count[axis][b[axis]];
+            const auto k = static_cast<std::uint32_t>(b[axis]);  // 0..bins-1: no sign extension
+            box[axis][k].extend(rlo, rhi);
+            ++count[axis][k];
         }
     }
     void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
