@@ -125,18 +125,22 @@ public:
     // returns its node count.
     std::uint32_t build_subtree(const Task& root) {
         std::uint32_t next = root.node + 1;
-        std::vector<Task> stack{root};
-        while (!stack.empty()) {
-            const Task t = stack.back();
-            stack.pop_back();
+        std::vector<Task> stack;
+        Task t = root;
+        for (;;) {  // depth first, left child next: it skips the stack
             Task left, right;
-            if (!split(t, left, right, 1)) continue;
-            left.node = next++;
-            right.node = next++;
-            s_.nodes[t.node].left_or_first = left.node;
-            s_.nodes[t.node].right_or_count = right.node;
-            stack.push_back(right);
-            stack.push_back(left);
+            if (split(t, left, right, 1)) {
+                left.node = next++;
+                right.node = next++;
+                s_.nodes[t.node].left_or_first = left.node;
+                s_.nodes[t.node].right_or_count = right.node;
+                stack.push_back(right);
+                t = left;
+                continue;
+            }
+            if (stack.empty()) break;
+            t = stack.back();
+            stack.pop_back();
         }
         return next - root.node;
     }
