@@ -282,14 +282,17 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
     std::vector<std::size_t> first_bad(n_chunks, n);
     Ref* refs = s.refs[0].get();
     parallel_for(n_chunks, threads, [&](std::size_t k, unsigned) {
+        Box4 box, cbox;  // the comparisons of Bounds::add, on lanes
         for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
             const Aabb& b = boxes[i];
             // The centre as Aabb::center() computes it.
             const Vec3 c = centroids.empty() ? b.center() : centroids[i];
             if (first_bad[k] == n && (!b.finite() || !finite(c) || b.empty())) first_bad[k] = i;
-            refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
-            parts[k].add(refs[i]);
+            const Ref& r = refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
+            box.extend(r.lanes(r.lo), r.lanes(r.hi));
+            cbox.extend(r.lanes(r.centroid), r.lanes(r.centroid));
         }
+        parts[k] = {box.aabb(), cbox.aabb()};
     }, 1);
     for (std::size_t k = 0; k < n_chunks; ++k) {
         const std::size_t i = first_bad[k];
