@@ -101,8 +101,9 @@ int main(int argc, char** argv) {
     double scale = 1.0;
     int repeat = 5, threads = 1;
     std::string cases = "bundle,hair,random,triangles";
-    for (int i = 1; i + 1 < argc; i += 2) {
+    for (int i = 1; i < argc; i += 2) {
         const std::string a = argv[i];
+        if (i + 1 == argc) { std::fprintf(stderr, "bench_build: %s needs a value\n", a.c_str()); return 2; }
         if (a == "--scale") scale = std::atof(argv[i + 1]);
         else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--threads") threads = std::max(1, std::atoi(argv[i + 1]));
