@@ -19,7 +19,7 @@ using bvh_detail::BinaryNode;
 
 // Chooses up to `width` binary descendants of `node` to become its children in
 // the wide tree: open the inner child of largest area until the node is full.
-std::array<std::uint32_t, 8> collapse_children(const std::vector<BinaryNode>& nodes,
+std::array<std::uint32_t, 8> collapse_children(const bvh_detail::BinaryNodes& nodes,
                                                std::uint32_t node, int width, int& n) {
     std::array<std::uint32_t, 8> kids{nodes[node].left_or_first, nodes[node].right_or_count};
     n = 2;
@@ -64,7 +64,7 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
     const bvh_detail::BinaryTree tree =
         bvh_detail::build_binary_tree(boxes, centroids, options, threads, bvh.prim_ids);
     if (n == 0) return bvh;
-    const std::vector<BinaryNode>& nodes = tree.nodes;
+    const bvh_detail::BinaryNodes& nodes = tree.nodes;
     const std::uint32_t root = tree.root;
     const std::size_t binary_nodes = tree.count;
 

@@ -44,7 +44,7 @@ struct Shared {
     const BuildOptions& options;
     int bins;
     std::array<std::unique_ptr<Ref[]>, 2> refs;
-    std::vector<BinaryNode> nodes;
+    BinaryNodes nodes;
     std::vector<std::uint32_t>& prim_ids;
 };
 
@@ -125,18 +125,22 @@ public:
     // returns its node count.
     std::uint32_t build_subtree(const Task& root) {
         std::uint32_t next = root.node + 1;
-        std::vector<Task> stack{root};
-        while (!stack.empty()) {
-            const Task t = stack.back();
-            stack.pop_back();
+        std::vector<Task> stack;
+        Task t = root;
+        for (;;) {  // depth first, left child next: it skips the stack
             Task left, right;
-            if (!split(t, left, right, 1)) continue;
-            left.node = next++;
-            right.node = next++;
-            s_.nodes[t.node].left_or_first = left.node;
-            s_.nodes[t.node].right_or_count = right.node;
-            stack.push_back(right);
-            stack.push_back(left);
+            if (split(t, left, right, 1)) {
+                left.node = next++;
+                right.node = next++;
+                s_.nodes[t.node].left_or_first = left.node;
+                s_.nodes[t.node].right_or_count = right.node;
+                stack.push_back(right);
+                t = left;
+                continue;
+            }
+            if (stack.empty()) break;
+            t = stack.back();
+            stack.pop_back();
         }
         return next - root.node;
     }
@@ -212,11 +216,12 @@ private:
     std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
                             const Split& best, Bounds& left, Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
+        const auto plane = static_cast<float>(best.bin);
         if (n == 1) {
             std::uint32_t n_left = 0;
             for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
             return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
-                return map.of(src[i])[best.axis] < best.bin;
+                return map.below(src[i], best.axis, plane);
             }, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
@@ -232,7 +237,7 @@ private:
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = map.of(src[i])[best.axis] < best.bin;
+                const bool goes_left = map.below(src[i], best.axis, plane);
                 dst[goes_left ? l++ : r++] = src[i];
                 parts[k][goes_left ? 0 : 1].add(src[i]);
             }
@@ -277,14 +282,17 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
     std::vector<std::size_t> first_bad(n_chunks, n);
     Ref* refs = s.refs[0].get();
     parallel_for(n_chunks, threads, [&](std::size_t k, unsigned) {
+        Box4 box, cbox;  // the comparisons of Bounds::add, on lanes
         for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
             const Aabb& b = boxes[i];
             // The centre as Aabb::center() computes it.
             const Vec3 c = centroids.empty() ? b.center() : centroids[i];
             if (first_bad[k] == n && (!b.finite() || !finite(c) || b.empty())) first_bad[k] = i;
-            refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
-            parts[k].add(refs[i]);
+            const Ref& r = refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
+            box.extend(r.lanes(r.lo), r.lanes(r.hi));
+            cbox.extend(r.lanes(r.centroid), r.lanes(r.centroid));
         }
+        parts[k] = {box.aabb(), cbox.aabb()};
     }, 1);
     for (std::size_t k = 0; k < n_chunks; ++k) {
         const std::size_t i = first_bad[k];
@@ -307,8 +315,11 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
 std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root_bounds,
                                                    unsigned threads) {
     const auto n = static_cast<std::uint32_t>(s.prim_ids.size());
-    s.nodes.resize(2 * std::size_t{n});
     const std::uint32_t task_size = threads > 1 ? std::max(kMinTask, n / (8 * threads)) : n;
+    // Room for the nodes above the tasks too (usually fewer than 4 n /
+    // task_size), so that appending them does not copy the whole array.
+    s.nodes.reserve(2 * std::size_t{n} + 4 * std::size_t{n / task_size} + 16);
+    s.nodes.resize(2 * std::size_t{n});
     std::vector<Task> stack, tasks;
     const auto place = [&](Task t) {
         if (t.end - t.begin <= task_size) {

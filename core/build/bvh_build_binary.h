@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <span>
+#include <memory>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace rtc::bvh_detail {
@@ -23,8 +25,24 @@ struct BinaryNode {
 // Trivial, so that the node array is allocated, not zeroed.
 static_assert(std::is_trivially_default_constructible_v<BinaryNode>);
 
+// An allocator whose resize() leaves trivial elements uninitialized: the
+// node array is written node by node and unused slots are never read.
+template <class T>
+struct NoZeroAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind { using other = NoZeroAllocator<U>; };
+    NoZeroAllocator() = default;
+    template <class U>
+    NoZeroAllocator(const NoZeroAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
+};
+using BinaryNodes = std::vector<BinaryNode, NoZeroAllocator<BinaryNode>>;
+
 struct BinaryTree {
-    std::vector<BinaryNode> nodes;  // not all slots are used: see `count`
+    BinaryNodes nodes;  // not all slots are used: see `count`
     std::uint32_t root = 0;
     std::size_t count = 0;          // nodes in the tree
 };

@@ -51,6 +51,13 @@ struct BinMap {
         return b > last ? last : b;
 #endif
     }
+    // of(r)[axis] < bin for a plane 1 <= bin <= bins - 1, on one lane: the
+    // clamped bin is below `bin` exactly when the unclamped x is (x >= 2^31
+    // and NaN go to bin 0, which is always below).
+    [[nodiscard]] bool below(const Ref& r, int axis, float bin) const {
+        const float x = (r.centroid[axis] - lo[axis]) * scale[axis];
+        return !(x >= bin && x < 2147483648.0f);
+    }
 };
 
 struct Bins {
@@ -66,8 +73,9 @@ struct Bins {
     void add(const Ref& r, I4 b) {
         const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
         for (int axis = 0; axis < 3; ++axis) {
-            box[axis][b[axis]].extend(rlo, rhi);
-            ++count[axis][b[axis]];
+            const auto k = static_cast<std::uint32_t>(b[axis]);  // 0..bins-1: no sign extension
+            box[axis][k].extend(rlo, rhi);
+            ++count[axis][k];
         }
     }
     void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {

@@ -1,0 +1,138 @@
+// build/bench_build: times the BVH builder alone (core/build/) on a few
+// scenes and prints, per scene, a hash of the tree (root, entries, prim ids),
+// its node count and SAH cost, so that a faster builder can be checked to
+// give the same trees. Usage:
+//   build/bench_build [--scale S] [--repeat R] [--threads T] [--cases a,b]
+// S multiplies every scene's primitive count (default 1: about 1 M each);
+// wall time is the best of R builds, M prims/s per thread from it; the
+// CPU-time rate (all threads' CPU time over R builds) drifts less with load.
+// For callgrind: valgrind --tool=callgrind --toggle-collect='*build_bvh*'
+//   build/bench_build --scale 0.2 --repeat 1 --threads 1
+#include "core/bvh.h"
+#include "intersectors/capsule.h"
+#include "intersectors/triangle.h"
+#include "scenes/convert.h"
+#include "scenes/generators/bundle.h"
+#include "scenes/generators/hair_gen.h"
+#include "scenes/generators/random.h"
+#include "scenes/generators/sphere_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <ctime>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace rtc;
+
+std::uint64_t fnv(std::uint64_t h, const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+std::uint64_t tree_hash(const Bvh& b) {
+    std::uint64_t h = 1469598103934665603ull;
+    h = fnv(h, &b.root, sizeof b.root);
+    h = fnv(h, b.entries.data(), b.entries.size() * sizeof(BvhEntry));
+    return fnv(h, b.prim_ids.data(), b.prim_ids.size() * sizeof(std::uint32_t));
+}
+
+std::vector<Aabb> capsule_boxes(const Strands& s) {
+    const auto prims = std::get<std::vector<Capsule>>(to_primitives(s, PrimitiveKind::Capsule));
+    std::vector<Aabb> boxes;
+    boxes.reserve(prims.size());
+    for (const Capsule& c : prims) boxes.push_back(bounds(c));
+    return boxes;
+}
+
+std::vector<Aabb> make_case(const std::string& name, double scale) {
+    const auto n = static_cast<std::uint32_t>(std::max(1.0, 1e6 * scale));
+    if (name == "bundle") {
+        BundleDesc d;
+        d.count = n;
+        d.radius = 0.0005f;
+        d.tilt_deg = 45.0f;
+        return capsule_boxes(make_bundle(d).strands);
+    }
+    if (name == "hair") {
+        HairDesc d;
+        d.style = HairStyle::Curly;
+        d.points_per_strand = 17;
+        d.strands = std::max(1u, n / 16);
+        return capsule_boxes(make_hair(d).strands);
+    }
+    if (name == "random") {  // n short capsules at random in a unit cube
+        Strands s;
+        SceneRng rng{7};
+        const auto u = [&] { return static_cast<float>(rng.uniform()); };
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const Vec3 p{u(), u(), u()};
+            const Vec3 q = p + 0.02f * Vec3{u() - 0.5f, u() - 0.5f, u() - 0.5f};
+            s.points.push_back(p);
+            s.points.push_back(q);
+            s.radii.insert(s.radii.end(), {0.001f, 0.001f});
+            s.offsets.push_back(static_cast<std::uint32_t>(s.points.size()));
+        }
+        return capsule_boxes(s);
+    }
+    if (name == "triangles") {
+        const int rings = std::max(3, static_cast<int>(std::sqrt(n / 2.0)));
+        const TriangleMesh m = make_sphere_mesh(Vec3{0.0f}, 1.0f, rings, rings);
+        std::vector<Aabb> boxes;
+        for (const auto& t : m.triangles)
+            boxes.push_back(bounds(Triangle{m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]}));
+        return boxes;
+    }
+    std::fprintf(stderr, "bench_build: unknown case '%s' (bundle, hair, random, triangles)\n", name.c_str());
+    std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    double scale = 1.0;
+    int repeat = 5, threads = 1;
+    std::string cases = "bundle,hair,random,triangles";
+    for (int i = 1; i < argc; i += 2) {
+        const std::string a = argv[i];
+        if (i + 1 == argc) { std::fprintf(stderr, "bench_build: %s needs a value\n", a.c_str()); return 2; }
+        if (a == "--scale") scale = std::atof(argv[i + 1]);
+        else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
+        else if (a == "--threads") threads = std::max(1, std::atoi(argv[i + 1]));
+        else if (a == "--cases") cases = argv[i + 1];
+        else { std::fprintf(stderr, "bench_build: unknown option %s\n", a.c_str()); return 2; }
+    }
+    std::printf("%-10s %9s %9s %12s %18s %9s %12s %12s\n", "case", "prims", "nodes", "SAH", "tree hash",
+                "best s", "Mprims/s/thr", "Mprims/cpu-s");
+    std::size_t pos = 0;
+    while (pos <= cases.size()) {
+        const std::size_t comma = std::min(cases.find(',', pos), cases.size());
+        const std::string name = cases.substr(pos, comma - pos);
+        pos = comma + 1;
+        const std::vector<Aabb> boxes = make_case(name, scale);
+        BuildOptions o;
+        o.threads = threads;
+        double best = 1e30, cpu = 0.0;
+        Bvh bvh;
+        for (int r = 0; r < repeat; ++r) {
+            const std::clock_t c0 = std::clock();
+            const auto t0 = std::chrono::steady_clock::now();
+            bvh = build_bvh(boxes, o);
+            best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+        }
+        const auto prims = static_cast<double>(boxes.size());
+        std::printf("%-10s %9zu %9zu %12.6f %016llx %9.4f %12.3f %12.3f\n", name.c_str(), boxes.size(),
+                    bvh.node_count(), sah_cost(bvh), static_cast<unsigned long long>(tree_hash(bvh)), best,
+                    prims / best / 1e6 / threads, prims * repeat / cpu / 1e6);
+        std::fflush(stdout);
+    }
+}
