@@ -124,7 +124,16 @@ int run_merge(const CliOptions& cli) {
             if (it == u->frames.end())
                 throw InputError(m->dir + "/shard.json: /units: point " + std::to_string(point) + " band " +
                                  std::to_string(b) + " has no frame of method " + method);
-            return read_frame_file((fs::path(m->dir) / it->second).string());
+            const std::string file = (fs::path(m->dir) / it->second).string();
+            FrameResult f = read_frame_file(file);
+            // The frame the config makes, before the merge allocates it.
+            const WorkloadDesc& w = plan.parsed[point].workload;
+            const bool camera = w.type != WorkloadType::Rays;
+            if (camera ? (f.width != w.width || f.height != w.height) : f.width != 0)
+                throw InputError(file + ": a " + std::to_string(f.width) + " x " + std::to_string(f.height) +
+                                 " frame, the config's is " +
+                                 (camera ? std::to_string(w.width) + " x " + std::to_string(w.height) : "a ray list"));
+            return f;
         }, what);
     };
     const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;

@@ -156,21 +156,19 @@ FrameResult read_frame_file(const std::string& path) {
         for (WarpTotals& x : t.warp) x = r.get<WarpTotals>("task warp totals");
     }
     f.task_end = f.task_begin + f.tasks.size();
-    // Items are pixels (camera frames) or rays (ray lists): each slice must
-    // lie inside the frame, whose ray count is not stored, so ray slices are
-    // bounded by the file's own size only.
+    // Items are pixels (camera frames) or rays (ray lists). Arrays keep only
+    // the band's items (nothing is allocated beyond what the file holds); a
+    // camera band must lie inside its frame.
     const std::size_t pixels = static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height);
-    const auto slice = [&](auto& full, auto part, const char* what) {
+    const auto slice = [&](auto& band, auto part, const char* what) {
         if (part.empty()) return;
-        const std::size_t items = pixels ? pixels : f.item_begin + part.size();
-        if (f.item_begin > items || part.size() > items - f.item_begin)
+        if (pixels && (f.item_begin > pixels || part.size() > pixels - f.item_begin))
             r.fail(std::string(what) + " outside the " + std::to_string(pixels) + "-pixel frame");
         if (f.item_end != f.item_begin && f.item_end != f.item_begin + part.size())
             r.fail(std::string(what) + ": " + std::to_string(part.size()) + " items, the band has " +
                    std::to_string(f.item_end - f.item_begin));
         f.item_end = f.item_begin + part.size();
-        full.resize(items);
-        std::copy(part.begin(), part.end(), full.begin() + static_cast<std::ptrdiff_t>(f.item_begin));
+        band = std::move(part);
     };
     f.item_end = f.item_begin;
     slice(f.pixel_counts, r.array<RayCounts>("pixel counts"), "pixel counts");
@@ -201,12 +199,12 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
     FrameResult out;
     std::size_t presets = 0;
     std::size_t next_task = 0;
-    // Copies a band's items [b, e) of one per-item array into the whole frame's.
-    const auto take = [](auto& full, const auto& part, std::size_t b, std::size_t e, std::size_t items) {
-        if (part.empty() || b == e) return;
+    // Copies a band's items (its array holds items [b, b + part.size())) into
+    // the whole frame's array of `items`.
+    const auto take = [](auto& full, const auto& part, std::size_t b, std::size_t items) {
+        if (part.empty()) return;
         if (full.size() < items) full.resize(items);
-        std::copy(part.begin() + static_cast<std::ptrdiff_t>(b), part.begin() + static_cast<std::ptrdiff_t>(e),
-                  full.begin() + static_cast<std::ptrdiff_t>(b));
+        std::copy(part.begin(), part.end(), full.begin() + static_cast<std::ptrdiff_t>(b));
     };
     for (std::size_t i = 0; i < count; ++i) {
         const FrameResult b = band_at(i);  // one band in memory at a time
@@ -238,8 +236,9 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
             throw InputError(band + ": items " + std::to_string(b.item_begin) + " .. " + std::to_string(b.item_end) +
                              " do not follow the previous band's " + std::to_string(out.item_end));
         const auto take_all = [&](auto& full, const auto& part) {
-            if (!part.empty() && part.size() < b.item_end) throw InputError(band + ": an array shorter than its band");
-            take(full, part, b.item_begin, b.item_end, items);
+            if (!part.empty() && part.size() != b.item_end - b.item_begin)
+                throw InputError(band + ": an array does not hold its band's items");
+            take(full, part, b.item_begin, items);
         };
         take_all(out.pixel_counts, b.pixel_counts);
         take_all(out.ray_counts, b.ray_counts);

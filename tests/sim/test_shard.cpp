@@ -196,6 +196,16 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
         CHECK(std::string(e.what()).find(frame.string() + ": byte ") == 0);
     }
     has(merge_error({s0.string(), s1.string()}), frame.string() + ": byte ");
+    // Hostile header fields (counts, sizes, offsets at their maximum) are
+    // refused with the file's name, before anything large is allocated. (A
+    // huge task count alone is consistent; the merge refuses the band.)
+    for (const std::size_t at : {16u, 20u, 24u, 36u, 44u, 60u}) {
+        CAPTURE(at);
+        std::string bad = bytes;
+        for (std::size_t k = at; k < at + 8; ++k) bad[k] = static_cast<char>(0xFF);
+        std::ofstream(frame, std::ios::binary | std::ios::trunc).write(bad.data(), static_cast<std::streamsize>(bad.size()));
+        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string()), doctest::Contains(frame.string().c_str()), InputError);
+    }
     // Calibration does not shard.
     CHECK(simulate({"calibrate", "configs/runs/fig3_bundles.json", "--shard", "0/2", "--out", fresh("cal").string()}) == 2);
 }
