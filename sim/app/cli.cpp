@@ -63,11 +63,11 @@ options (--opt value or --opt=value):
   --force               go on anyway: run above those ceilings (and sweeps above
                         10,000 points), empty an output directory an earlier run
                         of simulate wrote, let calibrate overwrite its `output`
-
   --shard I/N           run only shard I (0 .. N-1) of N: sweep points round robin,
                         or bands of a frame's rows when there are fewer points
                         than shards; writes frames/ and shard.json into --out
   --estimate            print each shard's estimated work and exit (with --shards N)
+
 paths and presets:
   Every path in a config is relative to that config file. Presets are named by
   name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
