@@ -102,6 +102,9 @@ int run_merge(const CliOptions& cli) {
     std::vector<std::vector<Band>> bands(plan.points.size());
     for (const ShardManifest& m : manifests)
         for (const ShardManifest::Unit& u : m.units) {
+            if (u.unit.point >= bands.size())
+                throw InputError(m.dir + "/shard.json: /units: point " + std::to_string(u.unit.point) +
+                                 " is past the config's " + std::to_string(bands.size()) + " sweep points");
             std::vector<Band>& list = bands[u.unit.point];
             if (list.empty()) list.resize(u.unit.bands);
             if (list.size() != u.unit.bands || list[u.unit.band].first)
