@@ -92,15 +92,14 @@ struct FrameOptions {
     return {tasks * band / bands, tasks * (band + 1) / bands};  // tasks < 2^40, bands <= 10^5: no overflow
 }
 
-// Records the band's range, and each task's totals when banded.
-inline void finish_band(FrameResult& out, const FrameOptions& fo, std::size_t tasks, std::size_t first,
+// Records the band's range of tasks and items.
+inline void finish_band(FrameResult& out, std::size_t tasks, std::size_t first,
                         std::size_t last, std::size_t items_per_task, std::size_t items) {
     out.task_count = tasks;
     out.task_begin = first;
     out.task_end = last;
     out.item_begin = std::min(items, first * items_per_task);
     out.item_end = std::min(items, last * items_per_task);
-    if (fo.bands == 0) out.tasks.clear();
 }
 
 // `tracer(const Ray&, CountingSink&, TraceScratch&) -> TraceHit` traces one
@@ -194,9 +193,9 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         if (fo.bands) out.tasks.push_back({t.totals, t.rays_traced, {}});
     }
     if (frame.from_camera)
-        finish_band(out, fo, tiles, first, last, static_cast<std::size_t>(out.width), out.pixel_counts.size());
+        finish_band(out, tiles, first, last, static_cast<std::size_t>(out.width), out.pixel_counts.size());
     else
-        finish_band(out, fo, tiles, first, last, kRaysPerTile, frame.rays.size());
+        finish_band(out, tiles, first, last, kRaysPerTile, frame.rays.size());
     out.trace_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;

@@ -175,10 +175,10 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         if (fo.bands) out.tasks.push_back({t.totals, t.rays_traced, std::move(t.warp)});
     }
     if (frame.from_camera)
-        finish_band(out, fo, tasks, first, last, static_cast<std::size_t>(th) * static_cast<std::size_t>(out.width),
+        finish_band(out, tasks, first, last, static_cast<std::size_t>(th) * static_cast<std::size_t>(out.width),
                     static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
     else
-        finish_band(out, fo, tasks, first, last, rays_per_task, frame.rays.size());
+        finish_band(out, tasks, first, last, rays_per_task, frame.rays.size());
     out.trace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

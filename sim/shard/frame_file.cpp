@@ -147,7 +147,7 @@ FrameResult read_frame_file(const std::string& path) {
     }
     r.require_records(tasks, sizeof(EventTotals) + sizeof(std::uint64_t) + presets * sizeof(WarpTotals), "tasks",
                       tasks_at);
-    f.warp.assign(presets, WarpTotals{});
+    f.warp.resize(presets);  // the preset count; the totals are the tasks'
     f.tasks.resize(static_cast<std::size_t>(tasks));
     for (FrameTask& t : f.tasks) {
         t.totals = r.get<EventTotals>("task totals");
@@ -185,12 +185,7 @@ FrameResult read_frame_file(const std::string& path) {
     f.rays = r.array<Ray>("rays");
     f.hits = r.array<TraceHit>("hits");
     if (!r.at_end()) r.fail("unexpected bytes after the hits");
-    for (const FrameTask& t : f.tasks) {
-        f.totals += t.totals;
-        f.rays_traced += t.rays_traced;
-        for (std::size_t p = 0; p < presets; ++p) f.warp[p] += t.warp[p];
-    }
-    return f;
+    return f;  // totals stay per task: merge_frame_bands adds them in order
 }
 
 FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult(std::size_t)>& band_at,

@@ -14,7 +14,7 @@ namespace rtc {
 void write_frame_file(const std::string& path, const FrameResult& frame);
 
 // The per-item arrays (pixels, or rays of a ray list) hold only the band's
-// items [item_begin, item_end). Throws InputError "<path>: byte N: ..." on a
+// items [item_begin, item_end), and the totals only per task (`tasks`). Throws InputError "<path>: byte N: ..." on a
 // truncated, foreign or inconsistent file, with every count checked against
 // the file size before anything is allocated.
 [[nodiscard]] FrameResult read_frame_file(const std::string& path);
