@@ -12,6 +12,7 @@
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"
 #include "sim/hardware/warp_trace.h"
+#include "sim/util/uninitialized.h"
 
 #include <algorithm>
 #include <chrono>
@@ -41,9 +42,10 @@ struct FrameTask {
 struct FrameResult {
     int width = 0, height = 0;            // 0 x 0 for ray lists
     EventTotals totals;
-    std::vector<RayCounts> pixel_counts;  // per pixel, summed over samples and bounces
-    std::vector<RayCounts> ray_counts;    // ray lists: per ray, in the list's order
-    std::vector<Vec3> radiance;           // per pixel, mean over samples
+    // Filled by the frame's tasks, not zeroed first (see sim/util/uninitialized.h).
+    UninitializedVector<RayCounts> pixel_counts;  // per pixel, summed over samples and bounces
+    UninitializedVector<RayCounts> ray_counts;    // ray lists: per ray, in the list's order
+    UninitializedVector<Vec3> radiance;           // per pixel, mean over samples
     std::vector<Ray> rays;                // every traced ray, when recorded
     std::vector<TraceHit> hits;           // every traced ray's hit, when recorded
     std::uint64_t rays_traced = 0;
@@ -92,6 +94,15 @@ struct FrameOptions {
     return {tasks * band / bands, tasks * (band + 1) / bands};  // tasks < 2^40, bands <= 10^5: no overflow
 }
 
+// Sizes a per-item array that the band's tasks fill, items [first, last):
+// only the items outside the band are zeroed here.
+template <class T>
+void size_for_band(UninitializedVector<T>& v, std::size_t items, std::size_t first, std::size_t last) {
+    v.resize(items);
+    std::fill(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(std::min(first, items)), T{});
+    std::fill(v.begin() + static_cast<std::ptrdiff_t>(std::min(last, items)), v.end(), T{});
+}
+
 // Records the band's range of tasks and items.
 inline void finish_band(FrameResult& out, std::size_t tasks, std::size_t first,
                         std::size_t last, std::size_t items_per_task, std::size_t items) {
@@ -133,10 +144,11 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
     if (frame.from_camera) {
         out.width = frame.camera.width;
         out.height = frame.camera.height;
-        out.pixel_counts.resize(static_cast<std::size_t>(out.width) * out.height);
-        out.radiance.resize(out.pixel_counts.size());
+        const std::size_t pixels = static_cast<std::size_t>(out.width) * out.height;
+        size_for_band(out.pixel_counts, pixels, first * out.width, last * out.width);
+        size_for_band(out.radiance, pixels, first * out.width, last * out.width);
     } else {
-        out.ray_counts.resize(frame.rays.size());
+        size_for_band(out.ray_counts, frame.rays.size(), first * kRaysPerTile, last * kRaysPerTile);
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     Progress progress(fo.label, last - first, fo.progress);

@@ -48,14 +48,15 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         out.width = frame.camera.width;
         out.height = frame.camera.height;
         const std::size_t n = static_cast<std::size_t>(out.width) * out.height;
-        out.pixel_counts.resize(n);
-        out.radiance.resize(n);
+        const std::size_t pixels_per_task = static_cast<std::size_t>(th) * static_cast<std::size_t>(out.width);
+        size_for_band(out.pixel_counts, n, first * pixels_per_task, last * pixels_per_task);
+        size_for_band(out.radiance, n, first * pixels_per_task, last * pixels_per_task);
         out.pixel_warp_cycles.assign(n, 0.0f);
         out.pixel_simt_active.assign(n, 0.0f);
         out.pixel_simt_slots.assign(n, 0.0f);
         out.more_pixel_warp_cycles.assign(presets > 1 ? presets - 1 : 0, std::vector<float>(n, 0.0f));
     } else {
-        out.ray_counts.resize(frame.rays.size());
+        size_for_band(out.ray_counts, frame.rays.size(), first * rays_per_task, last * rays_per_task);
     }
     const CameraFrame cam = frame.from_camera ? camera_frame(frame.camera) : CameraFrame{};
     const bool keep_rays = fo.record_rays || fo.record_hits;

@@ -35,7 +35,7 @@ std::vector<std::string> write_arrays(const RunResult& run, const std::string& d
         }
         const FrameResult& f = m.frame;
         const bool image = f.width > 0 && !f.pixel_counts.empty();
-        const std::vector<RayCounts>& counts = image ? f.pixel_counts : f.ray_counts;
+        const auto& counts = image ? f.pixel_counts : f.ray_counts;
         if (counts.empty()) continue;
         std::vector<std::size_t> shape;
         if (image) shape = {static_cast<std::size_t>(f.height), static_cast<std::size_t>(f.width)};

@@ -34,8 +34,8 @@ public:
         static_assert(std::is_trivially_copyable_v<T>);
         bytes(&v, sizeof v);
     }
-    template <class T>
-    void array(const std::vector<T>& v, std::size_t begin, std::size_t end) {
+    template <class T, class Alloc>
+    void array(const std::vector<T, Alloc>& v, std::size_t begin, std::size_t end) {
         static_assert(std::is_trivially_copyable_v<T>);
         put<std::uint64_t>(end - begin);
         if (end > begin) bytes(v.data() + begin, (end - begin) * sizeof(T));
@@ -168,7 +168,7 @@ FrameResult read_frame_file(const std::string& path) {
             r.fail(std::string(what) + ": " + std::to_string(part.size()) + " items, the band has " +
                    std::to_string(f.item_end - f.item_begin));
         f.item_end = f.item_begin + part.size();
-        band = std::move(part);
+        band.assign(part.begin(), part.end());
     };
     f.item_end = f.item_begin;
     slice(f.pixel_counts, r.array<RayCounts>("pixel counts"), "pixel counts");
@@ -198,7 +198,8 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
     // the whole frame's array of `items`.
     const auto take = [](auto& full, const auto& part, std::size_t b, std::size_t items) {
         if (part.empty()) return;
-        if (full.size() < items) full.resize(items);
+        using T = typename std::decay_t<decltype(full)>::value_type;
+        if (full.size() < items) full.resize(items, T{});  // zeros where no band has items
         std::copy(part.begin(), part.end(), full.begin() + static_cast<std::ptrdiff_t>(b));
     };
     for (std::size_t i = 0; i < count; ++i) {
