@@ -4,6 +4,10 @@
 # Instruction counts do not drift with the machine's load, unlike wall time.
 #   sim/bench/callgrind_per_ray.sh [BENCH] [CASE:METHOD:PIXELS ...]
 # Default: build/bench, cases 1-3 ref and obb (case 3 obb only) at small sizes.
+# The toggle names run() exactly (its parameter list ends with FrameOptions):
+# a pattern that also matches the lambdas inside run() toggles collection off
+# again on entering them, which undercounted once the tracer lambda stopped
+# being inlined.
 # Prints one line per case: instructions per ray, rays, and the bench's event
 # totals hash (identical hashes = identical counts).
 set -euo pipefail
@@ -15,7 +19,7 @@ out=$(mktemp -d)
 printf "%-4s %-8s %6s %10s %14s %12s  %s\n" case method pixels rays Ir Ir/ray events
 for spec in "${specs[@]}"; do
     IFS=: read -r c m p <<<"$spec"
-    valgrind --tool=callgrind --toggle-collect='rtc::BuiltMethodOf<*::run(*' \
+    valgrind --tool=callgrind --toggle-collect='rtc::BuiltMethodOf<*>::run(*rtc::FrameOptions const&) const' \
         --callgrind-out-file="$out/cg.$c.$m" "$bench" --cases "$c" --methods "$m" \
         --pixels "$p" --repeat 1 --threads 1 --json "$out/b.$c.$m.json" >"$out/log.$c.$m" 2>&1
     ir=$(callgrind_annotate "$out/cg.$c.$m" 2>/dev/null | awk '/PROGRAM TOTALS/ {gsub(",", "", $1); print $1}')
