@@ -16,6 +16,10 @@
 #include <unordered_map>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace rtc {
 
 // Program events (event unit Program) and their slots in ProgramCounts.
@@ -50,6 +54,15 @@ struct ProgramCounts {
         return s == 0xFF ? 0u : n[s];
     }
     [[nodiscard]] bool operator==(const ProgramCounts& o) const {
+#if defined(__SSE2__)
+        if constexpr (kProgramSlots == 16) {  // two 16-byte compares: once per program call
+            const auto* a = reinterpret_cast<const __m128i*>(n.data());
+            const auto* b = reinterpret_cast<const __m128i*>(o.n.data());
+            const __m128i eq = _mm_and_si128(_mm_cmpeq_epi8(_mm_loadu_si128(a), _mm_loadu_si128(b)),
+                                             _mm_cmpeq_epi8(_mm_loadu_si128(a + 1), _mm_loadu_si128(b + 1)));
+            return _mm_movemask_epi8(eq) == 0xFFFF;
+        }
+#endif
         for (std::size_t w = 0; w < kProgramSlots / 4; ++w) {
             std::uint64_t a, b;
             std::memcpy(&a, n.data() + 4 * w, 8);

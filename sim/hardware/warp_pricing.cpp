@@ -83,12 +83,18 @@ WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& pr
     thread_local std::vector<CallProfiles::Id> worst_call;
     worst.assign(max_calls, -1.0);
     worst_call.assign(max_calls, 0);
+    // Every profile priced up front, so that the loop over calls (the model's
+    // hot spot: one pass per call of the frame) is loads and compares through
+    // plain pointers the stores cannot alias.
+    const double* price = prices.all(*wave.profiles, m);
+    double* const w = worst.data();
+    CallProfiles::Id* const wc = worst_call.data();
     for (const LaneWork& l : wave.lanes) {
         p.active_lane_rounds += l.calls;
+        const CallProfiles::Id* call = wave.calls.data() + l.first_call;
         for (std::uint32_t r = 0; r < l.calls; ++r) {
-            const CallProfiles::Id id = wave.calls[l.first_call + r];
-            const double c = prices.of(*wave.profiles, id, m);
-            if (c > worst[r]) worst[r] = c, worst_call[r] = id;
+            const double c = price[call[r]];
+            if (c > w[r]) w[r] = c, wc[r] = call[r];
         }
     }
     for (std::uint32_t r = 0; r < max_calls; ++r) {

@@ -40,6 +40,11 @@ public:
         if (id >= price_.size()) extend(table, id, model);
         return price_[id];
     }
+    // The prices of every profile of `table`, indexed by id.
+    const double* all(const CallProfiles& table, const CostModel& model) {
+        if (table.size() > price_.size()) extend(table, static_cast<CallProfiles::Id>(table.size() - 1), model);
+        return price_.data();
+    }
 
 private:
     void extend(const CallProfiles& table, CallProfiles::Id id, const CostModel& model);
