@@ -78,7 +78,7 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
                       BlasFn&& traverse_blas) {
     const Vec3 inv_dir = safe_inverse(ray.direction);
     const LaneRay lanes(ray);
-    const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count, float tmax) {
+    const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count, float tmax) __attribute__((always_inline)) {
         float nearest = kInfinity;
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t index = scene.tlas.prim_ids[first + k];
@@ -139,7 +139,7 @@ template <TraversalMode Mode, class Sink, class PrimFn>
 float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
     return detail::trace_instances<Mode, true>(
         scene, ray, sink, on_prim,
-        [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) {
+        [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) __attribute__((noinline)) {
             return traverse<Mode, kBlasEvents>(scene.blases[blas], object_ray.origin,
                                                safe_inverse(object_ray.direction), object_ray.tmin,
                                                tmax, sink, on_leaf);
