@@ -56,44 +56,61 @@ struct BoxRay {
 // (the same float operations in the same order, min/max with the same operand
 // order, so NaNs and signed zeros resolve alike), four children per SSE
 // instruction: the children's boxes are transposed from the 32-byte entries.
+#if defined(__SSE2__)
+// Children [base, min(base + 4, n)) of a node: the hit mask of the block (bit
+// i for child base + i) and their entry distances in tnear[0, 4).
+[[nodiscard, gnu::always_inline]] inline unsigned intersect_block(const BvhEntry* child, std::uint32_t base,
+                                                                  std::uint32_t n, const BoxRay& r,
+                                                                  __m128 vtmax, float* tnear) {
+    // Lanes past the last child repeat it and are masked off by the caller.
+    const float* e0 = reinterpret_cast<const float*>(child + base);
+    const float *e1 = e0 + 8, *e2 = e0 + 16, *e3 = e0 + 24;
+    if (base + 4 > n) {
+        const float* last = reinterpret_cast<const float*>(child + (n - 1));
+        if (base + 1 >= n) e1 = last;
+        if (base + 2 >= n) e2 = last;
+        e3 = last;
+    }
+    // Entry floats: lo.x lo.y lo.z hi.x | hi.y hi.z (first count).
+    __m128 lx = _mm_loadu_ps(e0), ly = _mm_loadu_ps(e1), lz = _mm_loadu_ps(e2), hx = _mm_loadu_ps(e3);
+    _MM_TRANSPOSE4_PS(lx, ly, lz, hx);
+    const auto hi_yz = [](const float* e) {  // hi.y hi.z 0 0
+        return _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(e + 4));
+    };
+    const __m128 b01 = _mm_unpacklo_ps(hi_yz(e0), hi_yz(e1));
+    const __m128 b23 = _mm_unpacklo_ps(hi_yz(e2), hi_yz(e3));
+    const __m128 hy = _mm_movelh_ps(b01, b23), hz = _mm_movehl_ps(b23, b01);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(lx, r.ox), r.ix), tx1 = _mm_mul_ps(_mm_sub_ps(hx, r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(ly, r.oy), r.iy), ty1 = _mm_mul_ps(_mm_sub_ps(hy, r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(lz, r.oz), r.iz), tz1 = _mm_mul_ps(_mm_sub_ps(hz, r.oz), r.iz);
+    // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
+    const auto mn = [](__m128 a, __m128 b) { return _mm_min_ps(b, a); };
+    const auto mx = [](__m128 a, __m128 b) { return _mm_max_ps(b, a); };
+    const __m128 near = mx(mx(mn(tx0, tx1), mn(ty0, ty1)), mx(mn(tz0, tz1), r.tmin));
+    const __m128 far = mn(mn(mx(tx0, tx1), mx(ty0, ty1)), mn(mx(tz0, tz1), vtmax));
+    _mm_storeu_ps(tnear, near);
+    // A hit: near <= far * pad, and near finite (intersect_box's +inf is a miss).
+    const __m128 hit = _mm_and_ps(_mm_cmple_ps(near, _mm_mul_ps(far, _mm_set1_ps(kSlabPad))),
+                                  _mm_cmpneq_ps(near, _mm_set1_ps(kInfinity)));
+    return static_cast<unsigned>(_mm_movemask_ps(hit));
+}
+#endif
+
+// Tests children [0, n) of a node (n <= 8) and returns a mask of the hit ones,
+// with their entry distances in tnear[i]. Exactly intersect_box() per child
+// (the same float operations in the same order, min/max with the same operand
+// order, so NaNs and signed zeros resolve alike), four children per SSE
+// instruction: the children's boxes are transposed from the 32-byte entries.
 [[nodiscard, gnu::always_inline]] inline unsigned intersect_children(const BvhEntry* child, std::uint32_t n,
                                                  const BoxRay& r, float tmax, float* tnear) {
 #if defined(__SSE2__)
+    const __m128 vtmax = _mm_set1_ps(tmax);
+    // Nodes of one to four children (the default width) in one block, no loop;
+    // an empty root (a BVH over no primitives) has no children to read.
+    if (n - 1u < 4u) return intersect_block(child, 0, n, r, vtmax, tnear) & ((1u << n) - 1u);
     unsigned mask = 0;
-    const __m128 vtmax = _mm_set1_ps(tmax), pad = _mm_set1_ps(kSlabPad), inf = _mm_set1_ps(kInfinity);
-    for (std::uint32_t base = 0; base < n; base += 4) {
-        // Lanes past the last child repeat it and are masked off below.
-        const float* e0 = reinterpret_cast<const float*>(child + base);
-        const float *e1 = e0 + 8, *e2 = e0 + 16, *e3 = e0 + 24;
-        if (base + 4 > n) {
-            const float* last = reinterpret_cast<const float*>(child + (n - 1));
-            if (base + 1 >= n) e1 = last;
-            if (base + 2 >= n) e2 = last;
-            e3 = last;
-        }
-        // Entry floats: lo.x lo.y lo.z hi.x | hi.y hi.z (first count).
-        __m128 lx = _mm_loadu_ps(e0), ly = _mm_loadu_ps(e1), lz = _mm_loadu_ps(e2),
-               hx = _mm_loadu_ps(e3);
-        _MM_TRANSPOSE4_PS(lx, ly, lz, hx);
-        const auto hi_yz = [](const float* e) {  // hi.y hi.z 0 0
-            return _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(e + 4));
-        };
-        const __m128 b01 = _mm_unpacklo_ps(hi_yz(e0), hi_yz(e1));
-        const __m128 b23 = _mm_unpacklo_ps(hi_yz(e2), hi_yz(e3));
-        const __m128 hy = _mm_movelh_ps(b01, b23), hz = _mm_movehl_ps(b23, b01);
-        const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(lx, r.ox), r.ix), tx1 = _mm_mul_ps(_mm_sub_ps(hx, r.ox), r.ix);
-        const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(ly, r.oy), r.iy), ty1 = _mm_mul_ps(_mm_sub_ps(hy, r.oy), r.iy);
-        const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(lz, r.oz), r.iz), tz1 = _mm_mul_ps(_mm_sub_ps(hz, r.oz), r.iz);
-        // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
-        const auto mn = [](__m128 a, __m128 b) { return _mm_min_ps(b, a); };
-        const auto mx = [](__m128 a, __m128 b) { return _mm_max_ps(b, a); };
-        const __m128 near = mx(mx(mn(tx0, tx1), mn(ty0, ty1)), mx(mn(tz0, tz1), r.tmin));
-        const __m128 far = mn(mn(mx(tx0, tx1), mx(ty0, ty1)), mn(mx(tz0, tz1), vtmax));
-        _mm_storeu_ps(tnear + base, near);
-        // A hit: near <= far * pad, and near finite (intersect_box's +inf is a miss).
-        const __m128 hit = _mm_and_ps(_mm_cmple_ps(near, _mm_mul_ps(far, pad)), _mm_cmpneq_ps(near, inf));
-        mask |= static_cast<unsigned>(_mm_movemask_ps(hit)) << base;
-    }
+    for (std::uint32_t base = 0; base < n; base += 4)
+        mask |= intersect_block(child, base, n, r, vtmax, tnear + base) << base;
     return mask & ((1u << n) - 1u);
 #else
     unsigned mask = 0;
@@ -128,19 +145,21 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
     float nearest = kInfinity;
     const BoxRay box_ray(origin, inv_dir, tmin);
     while (top > 0) {
-        const Pending p = stack[--top];
-        if (Mode == TraversalMode::Closest && p.tnear > tmax) continue;  // culled after a hit
-        if (!(p.count & BvhEntry::kInnerBit)) {
-            const float t = on_leaf(p.first, p.count, tmax);
+        // Field by field: copying the 12-byte entry out went through memory.
+        --top;
+        if (Mode == TraversalMode::Closest && stack[top].tnear > tmax) continue;  // culled after a hit
+        const std::uint32_t first = stack[top].first, count = stack[top].count;
+        if (!(count & BvhEntry::kInnerBit)) {
+            const float t = on_leaf(first, count, tmax);
             if (t < nearest) nearest = t;
             if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
             if (Mode == TraversalMode::AnyHit && t < kInfinity) return t;
             continue;
         }
         sink.on(Level.node_visit);
-        const std::uint32_t n = p.count & ~BvhEntry::kInnerBit;
+        const std::uint32_t n = count & ~BvhEntry::kInnerBit;
         sink.add(Level.box_test, n);
-        const BvhEntry* child = entries + p.first;
+        const BvhEntry* child = entries + first;
         // Hit children go straight onto the stack, kept sorted far to near by
         // insertion so the nearest is popped first (equal distances pop in
         // reverse child order).
