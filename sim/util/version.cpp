@@ -1,5 +1,7 @@
 #include "sim/util/version.h"
 
+#include "rtcsim_git_stamp.h"  // generated at build time (cmake/git_stamp.cmake)
+
 namespace rtc {
 
 const char* git_commit() {
