@@ -99,7 +99,7 @@ public:
     // The id of `c`, adding it when new. Throws std::length_error past 65,536
     // distinct profiles. Inline fast path: the same profile as the last call.
     Id id(const ProgramCounts& c) {
-        if (last_ < profiles_.size() && profiles_[last_] == c) return last_;
+        if (has_last_ && last_counts_ == c) return last_;  // a copy here: no bounds check, no indirection
         return find_or_add(c);
     }
     [[nodiscard]] const ProgramCounts& operator[](Id i) const { return profiles_[i]; }
@@ -110,6 +110,8 @@ private:
     std::vector<ProgramCounts> profiles_;
     std::unordered_multimap<std::uint64_t, Id> index_;  // hash -> id
     Id last_ = 0;
+    ProgramCounts last_counts_;  // profiles_[last_]
+    bool has_last_ = false;
 };
 
 }  // namespace rtc
