@@ -53,14 +53,6 @@ struct PrimitiveQuery {
     float tmax;
 };
 
-// Traces `ray` through the two levels. `on_prim(const PrimitiveQuery&)` runs for
-// every primitive of every BLAS leaf the ray reaches and returns the distance
-// of a hit it accepted (or +inf); it prices its own work (triangle test,
-// context switch, ...) through the same sink. Returns the nearest accepted t.
-//
-// trace_two_level_with() lets a method traverse some BLASes its own way:
-// `traverse_blas(blas index, object ray, tmax, leaf_fn)` returns the nearest
-// accepted t, calling leaf_fn(first, count, tmax) as traverse() does.
 namespace detail {
 
 // The root's one child when it is a leaf (the masquerade's unit-box BLAS).
@@ -78,7 +70,10 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
                       BlasFn&& traverse_blas) {
     const Vec3 inv_dir = safe_inverse(ray.direction);
     const LaneRay lanes(ray);
-    const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count, float tmax) __attribute__((always_inline)) {
+    // Inlined into the TLAS traversal: as a call, every instance leaf cost a
+    // spill and reload of the traversal's broadcast ray registers.
+    const auto on_tlas_leaf = [&](std::uint32_t first, std::uint32_t count,
+                                  float tmax) __attribute__((always_inline)) {
         float nearest = kInfinity;
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t index = scene.tlas.prim_ids[first + k];
@@ -129,6 +124,14 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
 
 }  // namespace detail
 
+// Traces `ray` through the two levels. `on_prim(const PrimitiveQuery&)` runs for
+// every primitive of every BLAS leaf the ray reaches and returns the distance
+// of a hit it accepted (or +inf); it prices its own work (triangle test,
+// context switch, ...) through the same sink. Returns the nearest accepted t.
+//
+// trace_two_level_with() lets a method traverse some BLASes its own way:
+// `traverse_blas(blas index, object ray, tmax, leaf_fn)` returns the nearest
+// accepted t, calling leaf_fn(first, count, tmax) as traverse() does.
 template <TraversalMode Mode, class Sink, class PrimFn, class BlasFn>
 float trace_two_level_with(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim,
                            BlasFn&& traverse_blas) {
@@ -137,6 +140,8 @@ float trace_two_level_with(const TwoLevel& scene, const Ray& ray, Sink& sink, Pr
 
 template <TraversalMode Mode, class Sink, class PrimFn>
 float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+    // The BLAS traversal stays a function of its own: inlined into the TLAS
+    // leaf (inlined itself) it cost case 1 ref 7 % more instructions.
     return detail::trace_instances<Mode, true>(
         scene, ray, sink, on_prim,
         [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) __attribute__((noinline)) {
