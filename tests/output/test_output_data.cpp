@@ -132,11 +132,11 @@ TEST_CASE("output npy: header layout, round trip, and errors naming the file") {
     write_npy((dir / "b.npy").string(), NpyType::U32, {3}, ints.data());
     CHECK(read_npy((dir / "b.npy").string()).as_u64(0) == 4000000000u);
     std::ofstream((dir / "bad.npy").string(), std::ios::binary) << "NUMPY";
-    CHECK_THROWS_WITH_AS(read_npy((dir / "bad.npy").string()), doctest::Contains("bad.npy: not a .npy file"),
+    CHECK_THROWS_WITH_AS(static_cast<void>(read_npy((dir / "bad.npy").string())), doctest::Contains("bad.npy: not a .npy file"),
                          InputError);
     const std::string whole = read_text_file((dir / "a.npy").string());
     std::ofstream((dir / "short.npy").string(), std::ios::binary) << whole.substr(0, whole.size() - 8);
-    CHECK_THROWS_WITH_AS(read_npy((dir / "short.npy").string()), doctest::Contains("short.npy: 40 data bytes, shape needs 48"),
+    CHECK_THROWS_WITH_AS(static_cast<void>(read_npy((dir / "short.npy").string())), doctest::Contains("short.npy: 40 data bytes, shape needs 48"),
                          InputError);
 }
 

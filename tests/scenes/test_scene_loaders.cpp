@@ -71,7 +71,9 @@ TEST_CASE("scene loaders: SWC neurons, one segment per parent-child pair") {
     const std::pair<const char*, std::size_t> expected[] = {{"1734350788", 4464}, {"1734350908", 4846},
                                                             {"722817260", 4331}, {"754534424", 4695},
                                                             {"754538881", 4879}};
-    for (const auto& [id, segments] : expected) {
+    for (const auto& neuron : expected) {  // no structured binding: CAPTURE's lambda cannot take one (clang 14)
+        const char* const id = neuron.first;
+        const std::size_t segments = neuron.second;
         CAPTURE(id);
         const LoadedCurves n = load_curves(kData / "neurons/hemibrain_DA1_lPN" / (std::string(id) + ".swc"));
         CHECK(n.strands.segment_count() == segments);
