@@ -18,6 +18,8 @@
 #include "core/aabb.h"
 #include "core/ray.h"
 
+#include <cstring>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #include <xmmintrin.h>
@@ -37,10 +39,13 @@ struct LaneRay {
           tmin(r.tmin) {}
 };
 
-// Loads three floats into lanes 0-2 (lane 3 is zero) without reading past them.
+// Loads three floats into lanes 0-2 (lane 3 is zero) without reading past
+// them. x and y go through memcpy: a Vec3 is only 4-byte aligned, and
+// _mm_load_sd dereferences a double (misaligned: UB, and UBSan says so).
 [[gnu::always_inline]] inline __m128 load3(const Vec3& v) {
-    const __m128 xy = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&v.x)));
-    return _mm_movelh_ps(xy, _mm_load_ss(&v.z));
+    double xy;
+    std::memcpy(&xy, &v.x, sizeof xy);
+    return _mm_movelh_ps(_mm_castpd_ps(_mm_set_sd(xy)), _mm_load_ss(&v.z));
 }
 
 // The entry distance of the transformed ray into `box`, or +inf: exactly
