@@ -51,11 +51,6 @@ struct BoxRay {
 #endif
 };
 
-// Tests children [0, n) of a node (n <= 8) and returns a mask of the hit ones,
-// with their entry distances in tnear[i]. Exactly intersect_box() per child
-// (the same float operations in the same order, min/max with the same operand
-// order, so NaNs and signed zeros resolve alike), four children per SSE
-// instruction: the children's boxes are transposed from the 32-byte entries.
 #if defined(__SSE2__)
 // Children [base, min(base + 4, n)) of a node: the hit mask of the block (bit
 // i for child base + i) and their entry distances in tnear[0, 4).
