@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/bvh.h"
+#include "core/uninitialized.h"
 
 #include <cstdint>
 #include <span>
@@ -25,21 +26,8 @@ struct BinaryNode {
 // Trivial, so that the node array is allocated, not zeroed.
 static_assert(std::is_trivially_default_constructible_v<BinaryNode>);
 
-// An allocator whose resize() leaves trivial elements uninitialized: the
-// node array is written node by node and unused slots are never read.
-template <class T>
-struct NoZeroAllocator : std::allocator<T> {
-    template <class U>
-    struct rebind { using other = NoZeroAllocator<U>; };
-    NoZeroAllocator() = default;
-    template <class U>
-    NoZeroAllocator(const NoZeroAllocator<U>&) noexcept {}
-    template <class U>
-    void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
-};
-using BinaryNodes = std::vector<BinaryNode, NoZeroAllocator<BinaryNode>>;
+// Not zeroed: every reachable node is written, unused slots are never read.
+using BinaryNodes = UninitializedVector<BinaryNode>;
 
 struct BinaryTree {
     BinaryNodes nodes;  // not all slots are used: see `count`

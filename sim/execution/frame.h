@@ -6,13 +6,13 @@
 #pragma once
 
 #include "core/parallel.h"
+#include "core/uninitialized.h"
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
 #include "sim/util/progress.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"
 #include "sim/hardware/warp_trace.h"
-#include "sim/util/uninitialized.h"
 
 #include <algorithm>
 #include <chrono>
@@ -42,7 +42,7 @@ struct FrameTask {
 struct FrameResult {
     int width = 0, height = 0;            // 0 x 0 for ray lists
     EventTotals totals;
-    // Filled by the frame's tasks, not zeroed first (see sim/util/uninitialized.h).
+    // Filled by the frame's tasks, not zeroed first (see core/uninitialized.h).
     UninitializedVector<RayCounts> pixel_counts;  // per pixel, summed over samples and bounces
     UninitializedVector<RayCounts> ray_counts;    // ray lists: per ray, in the list's order
     UninitializedVector<Vec3> radiance;           // per pixel, mean over samples

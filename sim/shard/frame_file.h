@@ -14,9 +14,10 @@ namespace rtc {
 void write_frame_file(const std::string& path, const FrameResult& frame);
 
 // The per-item arrays (pixels, or rays of a ray list) hold only the band's
-// items [item_begin, item_end), and the totals only per task (`tasks`). Throws InputError "<path>: byte N: ..." on a
-// truncated, foreign or inconsistent file, with every count checked against
-// the file size before anything is allocated.
+// items [item_begin, item_end), and the totals only per task (`tasks`).
+// Throws InputError "<path>: byte N: ..." on a truncated, foreign or
+// inconsistent file, with every count checked against the file size before
+// anything is allocated.
 [[nodiscard]] FrameResult read_frame_file(const std::string& path);
 
 // Adds the bands of one frame (in band order, each from read_frame_file or a

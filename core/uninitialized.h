@@ -1,9 +1,12 @@
-// A vector whose resize() leaves its elements unconstructed, for per-pixel
-// and per-ray arrays that a frame's tasks fill in parallel: zeroing them first
-// would be a serial pass (and the page faults of a fresh allocation) in front
-// of every frame; 800 x 800 pixels of counts are 66 MB, 28 ms on this machine,
-// a third of an 800 x 800 frame of cheap rays on one core. Each thread now
-// touches the pages it writes.
+// A vector whose resize() leaves its elements unconstructed, for arrays whose
+// every used slot is written before it is read:
+// - the per-pixel and per-ray arrays a frame's tasks fill in parallel
+//   (sim/execution/frame.h): zeroing them first was a serial pass, with the
+//   page faults of a fresh allocation, in front of every frame (800 x 800
+//   pixels of counts are 66 MB, 28 ms on this machine, a third of a frame of
+//   cheap rays on one core); now each thread touches the pages it writes;
+// - the builder's binary node array (core/build/bvh_build_binary.h), sized
+//   for the worst case and written node by node.
 #pragma once
 
 #include <memory>
