@@ -30,6 +30,31 @@ struct BvhEntry {
 };
 static_assert(sizeof(BvhEntry) == 32);
 
+// Four children of a node in SIMD lanes (structure of arrays): what the
+// traversal kernel reads. A node of n children is ceil(n / 4) consecutive
+// blocks; lanes past its last child repeat that child and are masked off. The
+// boxes are the entries' own floats, so box tests are bit-identical; only the
+// layout differs: four aligned loads per coordinate instead of a transpose of
+// four 32-byte entries (20-30 instructions per node visit, see
+// docs/benchmark.md), and a 4-wide node is exactly two cache lines.
+struct alignas(64) BvhLaneBlock {
+    float lo_x[4], lo_y[4], lo_z[4];
+    float hi_x[4], hi_y[4], hi_z[4];
+    std::uint32_t first[4];  // inner child: its node's first block; leaf: first slot in prim_ids
+    std::uint32_t count[4];  // as BvhEntry::count
+
+    // Lane `lane` from entry `e`, whose `first` is still an entry index for an
+    // inner child (the caller maps it to a block). A lane past a node's last
+    // child repeats that child's box, with first = count = 0.
+    void set(std::uint32_t lane, const BvhEntry& e, bool used) {
+        lo_x[lane] = e.box.lo.x, lo_y[lane] = e.box.lo.y, lo_z[lane] = e.box.lo.z;
+        hi_x[lane] = e.box.hi.x, hi_y[lane] = e.box.hi.y, hi_z[lane] = e.box.hi.z;
+        first[lane] = used ? e.first : 0;
+        count[lane] = used ? e.count : 0;
+    }
+};
+static_assert(sizeof(BvhLaneBlock) == 128);
+
 enum class SplitStrategy { Sah, Median };
 
 struct BuildOptions {
@@ -51,6 +76,9 @@ struct Bvh {
     BvhEntry root;                      // the root node (always inner)
     std::vector<BvhEntry> entries;      // children of every node, node by node
     std::vector<std::uint32_t> prim_ids;  // leaf ranges index into this
+    // The same nodes as `entries`, in lanes (the root node's blocks first);
+    // derived by make_lanes(), which build_bvh() calls. traverse() reads these.
+    std::vector<BvhLaneBlock> lanes;
     int width = 4;
 
     [[nodiscard]] const Aabb& bounds() const { return root.box; }
@@ -59,7 +87,7 @@ struct Bvh {
     [[nodiscard]] std::size_t leaf_count() const;
     [[nodiscard]] std::size_t memory_bytes() const {
         return sizeof(Bvh) + entries.capacity() * sizeof(BvhEntry) +
-               prim_ids.capacity() * sizeof(std::uint32_t);
+               prim_ids.capacity() * sizeof(std::uint32_t) + lanes.capacity() * sizeof(BvhLaneBlock);
     }
 };
 
@@ -71,6 +99,10 @@ struct Bvh {
 // NaN or infinite.
 [[nodiscard]] Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options = {},
                             std::span<const Vec3> centroids = {});
+
+// Derives `bvh.lanes` from `bvh.root` and `bvh.entries` (for trees made by
+// hand; build_bvh() already did it). Blocks follow the entries' node order.
+void make_lanes(Bvh& bvh);
 
 // SAH cost of a tree (node traversal + primitive tests weighted by surface
 // area relative to the root), used to compare builders.

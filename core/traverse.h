@@ -15,6 +15,7 @@
 #include "core/events.h"
 
 #include <cstdint>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -52,32 +53,16 @@ struct BoxRay {
 };
 
 #if defined(__SSE2__)
-// Children [base, min(base + 4, n)) of a node: the hit mask of the block (bit
-// i for child base + i) and their entry distances in tnear[0, 4).
-[[nodiscard, gnu::always_inline]] inline unsigned intersect_block(const BvhEntry* child, std::uint32_t base,
-                                                                  std::uint32_t n, const BoxRay& r,
+// The four children of one lane block: the hit mask (bit i for lane i) and
+// their entry distances in tnear[0, 4).
+[[nodiscard, gnu::always_inline]] inline unsigned intersect_block(const BvhLaneBlock& b, const BoxRay& r,
                                                                   __m128 vtmax, float* tnear) {
-    // Lanes past the last child repeat it and are masked off by the caller.
-    const float* e0 = reinterpret_cast<const float*>(child + base);
-    const float *e1 = e0 + 8, *e2 = e0 + 16, *e3 = e0 + 24;
-    if (base + 4 > n) {
-        const float* last = reinterpret_cast<const float*>(child + (n - 1));
-        if (base + 1 >= n) e1 = last;
-        if (base + 2 >= n) e2 = last;
-        e3 = last;
-    }
-    // Entry floats: lo.x lo.y lo.z hi.x | hi.y hi.z (first count).
-    __m128 lx = _mm_loadu_ps(e0), ly = _mm_loadu_ps(e1), lz = _mm_loadu_ps(e2), hx = _mm_loadu_ps(e3);
-    _MM_TRANSPOSE4_PS(lx, ly, lz, hx);
-    const auto hi_yz = [](const float* e) {  // hi.y hi.z 0 0
-        return _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(e + 4));
-    };
-    const __m128 b01 = _mm_unpacklo_ps(hi_yz(e0), hi_yz(e1));
-    const __m128 b23 = _mm_unpacklo_ps(hi_yz(e2), hi_yz(e3));
-    const __m128 hy = _mm_movelh_ps(b01, b23), hz = _mm_movehl_ps(b23, b01);
-    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(lx, r.ox), r.ix), tx1 = _mm_mul_ps(_mm_sub_ps(hx, r.ox), r.ix);
-    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(ly, r.oy), r.iy), ty1 = _mm_mul_ps(_mm_sub_ps(hy, r.oy), r.iy);
-    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(lz, r.oz), r.iz), tz1 = _mm_mul_ps(_mm_sub_ps(hz, r.oz), r.iz);
+    const __m128 tx0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.lo_x), r.ox), r.ix);
+    const __m128 tx1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.hi_x), r.ox), r.ix);
+    const __m128 ty0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.lo_y), r.oy), r.iy);
+    const __m128 ty1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.hi_y), r.oy), r.iy);
+    const __m128 tz0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.lo_z), r.oz), r.iz);
+    const __m128 tz1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(b.hi_z), r.oz), r.iz);
     // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
     const auto mn = [](__m128 a, __m128 b) { return _mm_min_ps(b, a); };
     const auto mx = [](__m128 a, __m128 b) { return _mm_max_ps(b, a); };
@@ -91,26 +76,30 @@ struct BoxRay {
 }
 #endif
 
-// Tests children [0, n) of a node (n <= 8) and returns a mask of the hit ones,
-// with their entry distances in tnear[i]. Exactly intersect_box() per child
-// (the same float operations in the same order, min/max with the same operand
-// order, so NaNs and signed zeros resolve alike), four children per SSE
-// instruction: the children's boxes are transposed from the 32-byte entries.
-[[nodiscard, gnu::always_inline]] inline unsigned intersect_children(const BvhEntry* child, std::uint32_t n,
-                                                 const BoxRay& r, float tmax, float* tnear) {
+// Tests the n children (n <= 8) of the node whose lane blocks start at
+// `block` and returns a mask of the hit ones, with their entry distances in
+// tnear[i]. Exactly intersect_box() per child (the same float operations in
+// the same order, min/max with the same operand order, so NaNs and signed
+// zeros resolve alike), four children per SSE instruction.
+[[nodiscard, gnu::always_inline]] inline unsigned intersect_children(const BvhLaneBlock* block,
+                                                                     std::uint32_t n, const BoxRay& r,
+                                                                     float tmax, float* tnear) {
 #if defined(__SSE2__)
     const __m128 vtmax = _mm_set1_ps(tmax);
     // Nodes of one to four children (the default width) in one block, no loop;
-    // an empty root (a BVH over no primitives) has no children to read.
-    if (n - 1u < 4u) return intersect_block(child, 0, n, r, vtmax, tnear) & ((1u << n) - 1u);
+    // an empty root (a BVH over no primitives) has no block to read.
+    if (n - 1u < 4u) return intersect_block(*block, r, vtmax, tnear) & ((1u << n) - 1u);
     unsigned mask = 0;
     for (std::uint32_t base = 0; base < n; base += 4)
-        mask |= intersect_block(child, base, n, r, vtmax, tnear + base) << base;
+        mask |= intersect_block(block[base / 4], r, vtmax, tnear + base) << base;
     return mask & ((1u << n) - 1u);
 #else
     unsigned mask = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
-        tnear[i] = intersect_box(child[i].box, r.origin, r.inv_dir, r.tmin, tmax);
+        const BvhLaneBlock& b = block[i / 4];
+        const std::uint32_t l = i % 4;
+        const Aabb box{{b.lo_x[l], b.lo_y[l], b.lo_z[l]}, {b.hi_x[l], b.hi_y[l], b.hi_z[l]}};
+        tnear[i] = intersect_box(box, r.origin, r.inv_dir, r.tmin, tmax);
         if (tnear[i] != kInfinity) mask |= 1u << i;
     }
     return mask;
@@ -136,40 +125,55 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
     struct Pending { std::uint32_t first, count; float tnear; };
     Pending stack[kTraversalStackSize];
     int top = 0;
-    stack[top++] = {bvh.root.first, bvh.root.count, tmin};
     float nearest = kInfinity;
     const BoxRay box_ray(origin, inv_dir, tmin);
-    while (top > 0) {
-        // Field by field: copying the 12-byte entry out went through memory.
-        --top;
-        if (Mode == TraversalMode::Closest && stack[top].tnear > tmax) continue;  // culled after a hit
-        const std::uint32_t first = stack[top].first, count = stack[top].count;
-        if (!(count & BvhEntry::kInnerBit)) {
+    // The node or leaf at hand: the root node first (its blocks come first),
+    // then each node's nearest hit child, else the next entry popped.
+    std::uint32_t first = 0, count = bvh.root.count;
+    for (;;) {
+        if (count & BvhEntry::kInnerBit) {
+            sink.on(Level.node_visit);
+            const std::uint32_t n = count & ~BvhEntry::kInnerBit;
+            sink.add(Level.box_test, n);
+            const BvhLaneBlock* block = bvh.lanes.data() + first;
+            float tnear[8];
+            unsigned hits = intersect_children(block, n, box_ray, tmax, tnear);
+            const auto child = [&](int i) {
+                const BvhLaneBlock& b = block[i / 4];
+                return Pending{b.first[i % 4], b.count[i % 4], tnear[i]};
+            };
+            if (hits) {
+                // The nearest hit child goes next (of equal ones, the last);
+                // the others go onto the stack sorted far to near by insertion.
+                // Stack and order are those of pushing every hit child and
+                // popping the top, without that push and pop.
+                Pending next = child(__builtin_ctz(hits));
+                const int base = top;
+                for (hits &= hits - 1; hits; hits &= hits - 1) {
+                    Pending c = child(__builtin_ctz(hits));
+                    if (c.tnear <= next.tnear) std::swap(c, next);
+                    int j = top++;
+                    for (; j > base && stack[j - 1].tnear < c.tnear; --j) stack[j] = stack[j - 1];
+                    stack[j] = c;
+                }
+                if (Mode != TraversalMode::Closest || next.tnear <= tmax) {
+                    first = next.first, count = next.count;
+                    continue;
+                }
+            }
+        } else {
             const float t = on_leaf(first, count, tmax);
             if (t < nearest) nearest = t;
             if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
             if (Mode == TraversalMode::AnyHit && t < kInfinity) return t;
-            continue;
         }
-        sink.on(Level.node_visit);
-        const std::uint32_t n = count & ~BvhEntry::kInnerBit;
-        sink.add(Level.box_test, n);
-        const BvhEntry* child = entries + first;
-        // Hit children go straight onto the stack, kept sorted far to near by
-        // insertion so the nearest is popped first (equal distances pop in
-        // reverse child order).
-        const int base = top;
-        float tnear[8];
-        for (unsigned hits = intersect_children(child, n, box_ray, tmax, tnear); hits;
-             hits &= hits - 1) {
-            const int i = __builtin_ctz(hits);
-            const float t = tnear[i];
-            int j = top++;
-            for (; j > base && stack[j - 1].tnear < t; --j) stack[j] = stack[j - 1];
-            stack[j] = {child[i].first, child[i].count, t};
-        }
+        // Pop, field by field (copying the 12-byte entry out went through memory).
+        do {
+            if (top == 0) return nearest;
+            --top;
+        } while (Mode == TraversalMode::Closest && stack[top].tnear > tmax);  // culled after a hit
+        first = stack[top].first, count = stack[top].count;
     }
-    return nearest;
 }
 
 }  // namespace rtc

@@ -1,0 +1,45 @@
+// Derives the lane blocks (core/bvh.h, BvhLaneBlock) of a BVH from its
+// entries, for trees made by hand (build_bvh() writes them as it builds, in
+// the same order, so both give the same bytes): one pass to number each
+// node's blocks, one to fill them.
+#include "core/bvh.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace rtc {
+
+void make_lanes(Bvh& bvh) {
+    constexpr std::uint32_t kNotANode = std::numeric_limits<std::uint32_t>::max();
+    const auto blocks_of = [](std::uint32_t count) { return ((count & ~BvhEntry::kInnerBit) + 3u) / 4u; };
+    // block_of[i]: the first block of the node whose children start at entry i.
+    std::vector<std::uint32_t> size_at(bvh.entries.size() + 1, kNotANode);
+    size_at[bvh.root.first] = bvh.root.count;
+    for (const BvhEntry& e : bvh.entries)
+        if (e.is_inner()) size_at[e.first] = e.count;
+    std::vector<std::uint32_t>& block_of = size_at;  // rewritten in place
+    std::uint32_t next = blocks_of(bvh.root.count);  // the root's blocks come first
+    for (std::size_t i = 0; i < size_at.size(); ++i) {
+        if (size_at[i] == kNotANode) continue;
+        const std::uint32_t blocks = blocks_of(size_at[i]);
+        block_of[i] = i == bvh.root.first ? 0 : next;
+        if (i != bvh.root.first) next += blocks;
+    }
+
+    bvh.lanes.assign(next, BvhLaneBlock{});
+    const auto fill = [&](std::uint32_t first, std::uint32_t count) {
+        const std::uint32_t n = count & ~BvhEntry::kInnerBit;
+        BvhLaneBlock* block = bvh.lanes.data() + block_of[first];
+        for (std::uint32_t slot = 0; slot < blocks_of(count) * 4u; ++slot) {
+            const BvhEntry& e = bvh.entries[first + std::min(slot, n - 1u)];
+            BvhLaneBlock& b = block[slot / 4u];
+            b.set(slot % 4u, e, slot < n);
+            if (slot < n && e.is_inner()) b.first[slot % 4u] = block_of[e.first];
+        }
+    };
+    fill(bvh.root.first, bvh.root.count);
+    for (const BvhEntry& e : bvh.entries)
+        if (e.is_inner()) fill(e.first, e.count);
+}
+
+}  // namespace rtc
