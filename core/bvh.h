@@ -11,6 +11,7 @@
 #pragma once
 
 #include "core/aabb.h"
+#include "core/uninitialized.h"
 
 #include <cstdint>
 #include <span>
@@ -77,8 +78,9 @@ struct Bvh {
     std::vector<BvhEntry> entries;      // children of every node, node by node
     std::vector<std::uint32_t> prim_ids;  // leaf ranges index into this
     // The same nodes as `entries`, in lanes (the root node's blocks first);
-    // derived by make_lanes(), which build_bvh() calls. traverse() reads these.
-    std::vector<BvhLaneBlock> lanes;
+    // written by build_bvh() (make_lanes() for trees made by hand), every lane
+    // of every block, so not zeroed first. traverse() reads these.
+    UninitializedVector<BvhLaneBlock> lanes;
     int width = 4;
 
     [[nodiscard]] const Aabb& bounds() const { return root.box; }

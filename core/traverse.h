@@ -138,7 +138,7 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
             const BvhLaneBlock* block = bvh.lanes.data() + first;
             float tnear[8];
             unsigned hits = intersect_children(block, n, box_ray, tmax, tnear);
-            const auto child = [&](int i) {
+            const auto child = [&](std::uint32_t i) {
                 const BvhLaneBlock& b = block[i / 4];
                 return Pending{b.first[i % 4], b.count[i % 4], tnear[i]};
             };
@@ -147,10 +147,10 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
                 // the others go onto the stack sorted far to near by insertion.
                 // Stack and order are those of pushing every hit child and
                 // popping the top, without that push and pop.
-                Pending next = child(__builtin_ctz(hits));
+                Pending next = child(static_cast<std::uint32_t>(__builtin_ctz(hits)));
                 const int base = top;
                 for (hits &= hits - 1; hits; hits &= hits - 1) {
-                    Pending c = child(__builtin_ctz(hits));
+                    Pending c = child(static_cast<std::uint32_t>(__builtin_ctz(hits)));
                     if (c.tnear <= next.tnear) std::swap(c, next);
                     int j = top++;
                     for (; j > base && stack[j - 1].tnear < c.tnear; --j) stack[j] = stack[j - 1];
