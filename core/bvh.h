@@ -7,7 +7,9 @@
 // inner entry (even over zero or one primitive), so a ray always starts with a
 // node visit and every leaf is reached through a child box test, as on the
 // hardware (the masquerade's unit-box BLAS relies on that: its one box test is
-// the OBB test).
+// the OBB test). The traversal reads a second copy of the same nodes laid out
+// for SIMD lanes (`lanes`, BvhLaneBlock below); `entries` stay the tree's
+// description for the builders, statistics and tests.
 #pragma once
 
 #include "core/aabb.h"
