@@ -79,9 +79,9 @@ struct Bvh {
     BvhEntry root;                      // the root node (always inner)
     std::vector<BvhEntry> entries;      // children of every node, node by node
     std::vector<std::uint32_t> prim_ids;  // leaf ranges index into this
-    // The same nodes as `entries`, in lanes (the root node's blocks first);
-    // written by build_bvh() (make_lanes() for trees made by hand), every lane
-    // of every block, so not zeroed first. traverse() reads these.
+    // The same nodes as `entries`, in lanes (the root node's blocks first),
+    // written by make_lanes(), every lane of every block, so not zeroed
+    // first. traverse() reads these.
     UninitializedVector<BvhLaneBlock> lanes;
     int width = 4;
 
@@ -104,9 +104,10 @@ struct Bvh {
 [[nodiscard]] Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options = {},
                             std::span<const Vec3> centroids = {});
 
-// Derives `bvh.lanes` from `bvh.root` and `bvh.entries` (for trees made by
-// hand; build_bvh() already did it). Blocks follow the entries' node order.
-void make_lanes(Bvh& bvh);
+// Derives `bvh.lanes` from `bvh.root` and `bvh.entries` on `threads` threads
+// (build_bvh() calls it; call it for trees made by hand). Blocks follow the
+// entries' node order, the root's first.
+void make_lanes(Bvh& bvh, unsigned threads = 1);
 
 // SAH cost of a tree (node traversal + primitive tests weighted by surface
 // area relative to the root), used to compare builders.

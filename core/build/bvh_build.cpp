@@ -71,29 +71,15 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
     // As many slots as binary nodes, like the serial builder always reserved
     // (memory_bytes() counts the capacity).
     bvh.entries.reserve(binary_nodes);
-    // The lane blocks are written alongside (a second pass over the entries,
-    // make_lanes(), cost 4 % of a build). Reserved for the usual count: a
-    // binary tree has a node per leaf, a 4- or 8-wide one about a block per
-    // two leaves (0.46-0.48 on the bench_build scenes); more only regrows.
-    const std::size_t leaves = (binary_nodes + 1) / 2;
-    bvh.lanes.reserve(options.width == 2 ? leaves : leaves / 2 + 16);
     const auto fill = [&](std::uint32_t slot, std::uint32_t b) {
         BvhEntry& e = bvh.entries[slot];
         e.box = nodes[b].box();
         e.first = nodes[b].is_leaf() ? nodes[b].left_or_first : 0;
         e.count = nodes[b].is_leaf() ? nodes[b].right_or_count & ~BinaryNode::kLeafBit : 0;
     };
-    // A node's blocks: its children's entries [first, first + k) in lanes.
-    const auto add_blocks = [&](std::uint32_t first, std::uint32_t k) {
-        const auto block = static_cast<std::uint32_t>(bvh.lanes.size());
-        bvh.lanes.resize(block + (k + 3) / 4);
-        for (std::uint32_t slot = 0; slot < (k + 3) / 4 * 4; ++slot)
-            bvh.lanes[block + slot / 4].set(slot % 4, bvh.entries[first + std::min(slot, k - 1)], slot < k);
-        return block;
-    };
-    // Work list of (binary inner node, entry slot that will point at its
-    // children, and that slot's lane as block * 4 + lane; UINT32_MAX for the root).
-    struct Work { std::uint32_t binary, slot, lane; };
+    // Work list of (binary inner node, entry slot that will point at its children;
+    // UINT32_MAX for the root).
+    struct Work { std::uint32_t binary, slot; };
     std::vector<Work> work;
     bvh.root.box = nodes[root].box();
     if (nodes[root].is_leaf()) {  // a lone leaf still hangs below a root node
@@ -101,10 +87,10 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
         fill(0, root);
         bvh.root.first = 0;
         bvh.root.count = 1 | BvhEntry::kInnerBit;
-        add_blocks(0, 1);
+        make_lanes(bvh, threads);
         return bvh;
     }
-    work.push_back({root, UINT32_MAX, UINT32_MAX});
+    work.push_back({root, UINT32_MAX});
     while (!work.empty()) {
         const Work w = work.back();
         work.pop_back();
@@ -115,16 +101,16 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
         BvhEntry& parent = w.slot == UINT32_MAX ? bvh.root : bvh.entries[w.slot];
         parent.first = first;
         parent.count = static_cast<std::uint32_t>(k) | BvhEntry::kInnerBit;
-        for (int i = k - 1; i >= 0; --i) fill(first + i, kids[i]);
-        const std::uint32_t block = add_blocks(first, static_cast<std::uint32_t>(k));
-        if (w.lane != UINT32_MAX) {
-            bvh.lanes[w.lane / 4].first[w.lane % 4] = block;
-            bvh.lanes[w.lane / 4].count[w.lane % 4] = parent.count;
+        for (int i = k - 1; i >= 0; --i) {
+            fill(first + i, kids[i]);
+            if (!nodes[kids[i]].is_leaf()) work.push_back({kids[i], first + i});
         }
-        for (int i = k - 1; i >= 0; --i)
-            if (!nodes[kids[i]].is_leaf())
-                work.push_back({kids[i], first + i, block * 4 + static_cast<std::uint32_t>(i)});
     }
+    // The lane blocks the traversal reads, from the finished entries, on the
+    // build's threads (per 1 M primitives: 40 ms on one thread, 23 ms on two,
+    // about half of it the first touch of the blocks' 60 MB). Written inside
+    // the serial loop above instead, they cost as much, in less simple code.
+    make_lanes(bvh, threads);
     return bvh;
 }
 

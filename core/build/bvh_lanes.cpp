@@ -1,15 +1,15 @@
 // Derives the lane blocks (core/bvh.h, BvhLaneBlock) of a BVH from its
-// entries, for trees made by hand (build_bvh() writes them as it builds, in
-// the same order, so both give the same bytes): one pass to number each
-// node's blocks, one to fill them.
+// entries: one serial pass numbers each node's blocks (in the entries' node
+// order, the root's first), a parallel one fills them.
 #include "core/bvh.h"
+#include "core/parallel.h"
 
 #include <algorithm>
 #include <limits>
 
 namespace rtc {
 
-void make_lanes(Bvh& bvh) {
+void make_lanes(Bvh& bvh, unsigned threads) {
     constexpr std::uint32_t kNotANode = std::numeric_limits<std::uint32_t>::max();
     const auto blocks_of = [](std::uint32_t count) { return ((count & ~BvhEntry::kInnerBit) + 3u) / 4u; };
     // block_of[i]: the first block of the node whose children start at entry i.
@@ -26,7 +26,8 @@ void make_lanes(Bvh& bvh) {
         if (i != bvh.root.first) next += blocks;
     }
 
-    bvh.lanes.assign(next, BvhLaneBlock{});
+    bvh.lanes.clear();
+    bvh.lanes.resize(next);  // not zeroed: every lane of every block is written below
     const auto fill = [&](std::uint32_t first, std::uint32_t count) {
         const std::uint32_t n = count & ~BvhEntry::kInnerBit;
         BvhLaneBlock* block = bvh.lanes.data() + block_of[first];
@@ -38,8 +39,14 @@ void make_lanes(Bvh& bvh) {
         }
     };
     fill(bvh.root.first, bvh.root.count);
-    for (const BvhEntry& e : bvh.entries)
-        if (e.is_inner()) fill(e.first, e.count);
+    // Each inner entry fills its node's blocks: disjoint writes, any order.
+    const std::size_t entries = bvh.entries.size();
+    constexpr std::size_t kChunk = 16384;
+    parallel_for((entries + kChunk - 1) / kChunk, threads, [&](std::size_t chunk, unsigned) {
+        const std::size_t end = std::min(entries, (chunk + 1) * kChunk);
+        for (std::size_t i = chunk * kChunk; i < end; ++i)
+            if (bvh.entries[i].is_inner()) fill(bvh.entries[i].first, bvh.entries[i].count);
+    });
 }
 
 }  // namespace rtc
