@@ -12,7 +12,8 @@ namespace rtc {
 void make_lanes(Bvh& bvh, unsigned threads) {
     constexpr std::uint32_t kNotANode = std::numeric_limits<std::uint32_t>::max();
     const auto blocks_of = [](std::uint32_t count) { return ((count & ~BvhEntry::kInnerBit) + 3u) / 4u; };
-    // block_of[i]: the first block of the node whose children start at entry i.
+    // size_at[i]: the count of the node whose children start at entry i,
+    // then rewritten in place as block_of[i], that node's first block.
     std::vector<std::uint32_t> size_at(bvh.entries.size() + 1, kNotANode);
     size_at[bvh.root.first] = bvh.root.count;
     for (const BvhEntry& e : bvh.entries)
