@@ -38,6 +38,31 @@ struct EventTotals {
     void add(const RayCounts& c) {
         for (std::size_t i = 0; i < kEventCount; ++i) n[i] += c.n[i];
     }
+    // The sum of many rays' (or pixels') counts, exactly add() on each. Sums
+    // up to kChunk of them in 32-bit lanes (four per SSE add, no widening),
+    // together with the OR of every count: a chunk whose counts are all below
+    // 2^24 sums to below kChunk * 2^24 = 2^32, so its 32-bit sums did not
+    // wrap; a chunk with a larger count is summed again in 64 bits.
+    void add_all(const RayCounts* c, std::size_t count) {
+        constexpr std::size_t kChunk = 256;
+        constexpr std::uint32_t kLimit = 1u << 24;  // kChunk * kLimit == 2^32
+        for (std::size_t begin = 0; begin < count; begin += kChunk) {
+            const std::size_t end = begin + kChunk < count ? begin + kChunk : count;
+            RayCounts sum, seen;
+            for (std::size_t r = begin; r < end; ++r)
+                for (std::size_t i = 0; i < kEventCount; ++i) {
+                    sum.n[i] += c[r].n[i];
+                    seen.n[i] |= c[r].n[i];
+                }
+            std::uint32_t any = 0;
+            for (std::size_t i = 0; i < kEventCount; ++i) any |= seen.n[i];
+            if (any < kLimit) {
+                add(sum);
+            } else {
+                for (std::size_t r = begin; r < end; ++r) add(c[r]);
+            }
+        }
+    }
     EventTotals& operator+=(const EventTotals& o) {
         for (std::size_t i = 0; i < kEventCount; ++i) n[i] += o.n[i];
         return *this;

@@ -180,17 +180,20 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
                                .radiance;
                 out.pixel_counts[pixel] = sink.ray;
                 out.radiance[pixel] = sum / static_cast<float>(frame.path.spp);
-                totals.add(sink.ray);
             }
+            // The row's sum, read back from its pixels: cheaper than a 64-bit
+            // add per pixel (EventTotals::add_all says why it is exact).
+            totals.add_all(out.pixel_counts.data() + static_cast<std::size_t>(py) * out.width,
+                           static_cast<std::size_t>(out.width));
         } else {
-            // Per ray: the totals are 64-bit, a tile's sum in 32 bits could wrap.
-            const std::size_t end = std::min(frame.rays.size(), (tile + 1) * kRaysPerTile);
-            for (std::size_t i = tile * kRaysPerTile; i < end; ++i) {
+            const std::size_t begin = tile * kRaysPerTile;
+            const std::size_t end = std::min(frame.rays.size(), begin + kRaysPerTile);
+            for (std::size_t i = begin; i < end; ++i) {
                 CountingSink sink;
                 trace(frame.rays[i], sink);
                 out.ray_counts[i] = sink.ray;
-                totals.add(sink.ray);
             }
+            totals.add_all(out.ray_counts.data() + begin, end - begin);
         }
         t.totals = totals;
         t.rays_traced = rays_traced;
