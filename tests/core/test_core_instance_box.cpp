@@ -1,14 +1,16 @@
 // The instance step on SIMD lanes (core/instance_box.h) against the scalar
 // path it replaces: transform the ray with Affine::point / vector, take
-// safe_inverse, test the box with intersect_box. Results must be equal bit
-// for bit, for ordinary rays and for the inputs where float rules bite:
-// zero direction components of either sign (the +-1e30 mapping), axis-aligned
-// and degenerate transforms, rays starting on a slab, infinite and NaN tmax.
+// safe_inverse, test the box with intersect_box; and object_ray() against
+// Affine::ray. Results must be equal bit for bit, for ordinary rays and for
+// the inputs where float rules bite: zero direction components of either sign
+// (the +-1e30 mapping), axis-aligned and degenerate transforms, rays starting
+// on a slab, infinite and NaN tmax.
 #include "core/instance_box.h"
 #include "core_test_util.h"
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -29,6 +31,18 @@ struct Compare {
     void operator()(const Affine& a, const Aabb& box, const Ray& r, float tmax) {
         const float want = scalar_path(a, box, r, tmax);
         const float got = intersect_instance_box(a, box, LaneRay(r), tmax);
+        // The object ray on the lanes against Affine::ray, every float's bits.
+        Ray want_ray = a.ray(r);
+        want_ray.tmax = tmax;
+        const Ray got_ray = object_ray(a, LaneRay(r), tmax);
+        const auto bits = [](const Ray& x) {
+            return std::array<std::uint32_t, 8>{
+                std::bit_cast<std::uint32_t>(x.origin.x),    std::bit_cast<std::uint32_t>(x.origin.y),
+                std::bit_cast<std::uint32_t>(x.origin.z),    std::bit_cast<std::uint32_t>(x.tmin),
+                std::bit_cast<std::uint32_t>(x.direction.x), std::bit_cast<std::uint32_t>(x.direction.y),
+                std::bit_cast<std::uint32_t>(x.direction.z), std::bit_cast<std::uint32_t>(x.tmax)};
+        };
+        if (bits(got_ray) != bits(want_ray)) CHECK(bits(got_ray) == bits(want_ray));
         ++compared;
         if (want != kInfinity) ++hits;
         if (std::bit_cast<std::uint32_t>(want) != std::bit_cast<std::uint32_t>(got)) {
