@@ -43,8 +43,12 @@ static_assert(sizeof(BvhEntry) == 32);
 struct alignas(64) BvhLaneBlock {
     float lo_x[4], lo_y[4], lo_z[4];
     float hi_x[4], hi_y[4], hi_z[4];
-    std::uint32_t first[4];  // inner child: its node's first block; leaf: first slot in prim_ids
-    std::uint32_t count[4];  // as BvhEntry::count
+    // Side by side, so the traversal takes a child's pair in one 8-byte load.
+    struct Child {
+        std::uint32_t first;  // inner child: its node's first block; leaf: first slot in prim_ids
+        std::uint32_t count;  // as BvhEntry::count
+    };
+    Child child[4];
 
     // Lane `lane` from entry `e`, whose `first` is still an entry index for an
     // inner child (the caller maps it to a block). A lane past a node's last
@@ -52,8 +56,7 @@ struct alignas(64) BvhLaneBlock {
     void set(std::uint32_t lane, const BvhEntry& e, bool used) {
         lo_x[lane] = e.box.lo.x, lo_y[lane] = e.box.lo.y, lo_z[lane] = e.box.lo.z;
         hi_x[lane] = e.box.hi.x, hi_y[lane] = e.box.hi.y, hi_z[lane] = e.box.hi.z;
-        first[lane] = used ? e.first : 0;
-        count[lane] = used ? e.count : 0;
+        child[lane] = used ? Child{e.first, e.count} : Child{0, 0};
     }
 };
 static_assert(sizeof(BvhLaneBlock) == 128);

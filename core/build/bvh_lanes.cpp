@@ -36,7 +36,7 @@ void make_lanes(Bvh& bvh, unsigned threads) {
             const BvhEntry& e = bvh.entries[first + std::min(slot, n - 1u)];
             BvhLaneBlock& b = block[slot / 4u];
             b.set(slot % 4u, e, slot < n);
-            if (slot < n && e.is_inner()) b.first[slot % 4u] = block_of[e.first];
+            if (slot < n && e.is_inner()) b.child[slot % 4u].first = block_of[e.first];
         }
     };
     fill(bvh.root.first, bvh.root.count);

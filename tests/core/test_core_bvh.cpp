@@ -73,15 +73,15 @@ std::vector<int> check_lanes_match(const Bvh& bvh) {
             CAPTURE(slot);
             CHECK(lane_box_is(b, l, e.box));
             if (slot >= n) {  // padding
-                CHECK(b.first[l] == 0);
-                CHECK(b.count[l] == 0);
+                CHECK(b.child[l].first == 0);
+                CHECK(b.child[l].count == 0);
                 continue;
             }
-            REQUIRE(b.count[l] == e.count);
+            REQUIRE(b.child[l].count == e.count);
             if (e.is_inner())
-                todo.push_back({e.first, b.first[l], e.count});
+                todo.push_back({e.first, b.child[l].first, e.count});
             else
-                CHECK(b.first[l] == e.first);
+                CHECK(b.child[l].first == e.first);
         }
     }
     return reached;
@@ -196,7 +196,7 @@ TEST_CASE("bvh: lane blocks of a tree made by hand") {
     hand.root = {{Vec3(-1), Vec3(6)}, 5, 2 | BvhEntry::kInnerBit};
     make_lanes(hand);
     REQUIRE(hand.lanes.size() == 3);  // the root's block first, then two
-    CHECK(hand.lanes[0].first[1] == 1);
+    CHECK(hand.lanes[0].child[1].first == 1);
     CHECK(check_lanes_match(hand) == std::vector<int>{1, 1, 1});
 }
 
