@@ -15,7 +15,6 @@
 #include "core/events.h"
 
 #include <cstdint>
-#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -149,8 +148,10 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
                 Pending next = child(static_cast<std::uint32_t>(__builtin_ctz(hits)));
                 const int base = top;
                 for (hits &= hits - 1; hits; hits &= hits - 1) {
-                    Pending c = child(static_cast<std::uint32_t>(__builtin_ctz(hits)));
-                    if (c.tnear <= next.tnear) std::swap(c, next);
+                    const Pending hit = child(static_cast<std::uint32_t>(__builtin_ctz(hits)));
+                    const bool nearer = hit.tnear <= next.tnear;
+                    const Pending c = nearer ? next : hit;  // the one pushed
+                    if (nearer) next = hit;
                     int j = top++;
                     for (; j > base && stack[j - 1].tnear < c.tnear; --j) stack[j] = stack[j - 1];
                     stack[j] = c;
