@@ -60,6 +60,7 @@ struct alignas(64) BvhLaneBlock {
     }
 };
 static_assert(sizeof(BvhLaneBlock) == 128);
+static_assert(sizeof(BvhLaneBlock::Child) == 8);  // the traversal moves a child as one word
 
 enum class SplitStrategy { Sah, Median };
 

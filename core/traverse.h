@@ -15,6 +15,7 @@
 #include "core/events.h"
 
 #include <cstdint>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -121,17 +122,30 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
         const float hit = on_leaf(leaf.first, leaf.count, tmax);
         return hit < kInfinity ? hit : kInfinity;
     }
+    // A child's (first, count) as one 64-bit word, so that it moves in one
+    // register: as a pair of fields it went through the stack frame (the
+    // head frame's traces wrote 10 % more and ran 3-5 % slower).
     struct Pending {
-        BvhLaneBlock::Child node;
+        std::uint64_t node;
         float tnear;
+    };
+    const auto word = [](const BvhLaneBlock::Child& c) {
+        std::uint64_t w;
+        std::memcpy(&w, &c, sizeof w);
+        return w;
+    };
+    std::uint32_t first = 0, count = bvh.root.count;  // the node or leaf at hand
+    const auto take = [&](std::uint64_t w) {
+        BvhLaneBlock::Child c;
+        std::memcpy(&c, &w, sizeof c);
+        first = c.first, count = c.count;
     };
     Pending stack[kTraversalStackSize];
     int top = 0;
     float nearest = kInfinity;
     const BoxRay box_ray(origin, inv_dir, tmin);
-    // The node or leaf at hand: the root node first (its blocks come first),
-    // then each node's nearest hit child, else the next entry popped.
-    std::uint32_t first = 0, count = bvh.root.count;
+    // At hand: the root node first (its blocks come first), then each node's
+    // nearest hit child, else the next entry popped.
     for (;;) {
         if (count & BvhEntry::kInnerBit) {
             sink.on(Level.node_visit);
@@ -162,14 +176,14 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
                 // One block (the default width): no block index per child
                 // (case 1 and 2: 3-4 % fewer instructions per ray).
                 const auto in_one_block = [&](std::uint32_t i) {
-                    return Pending{block->child[i & 3u], tnear[i & 3u]};
+                    return Pending{word(block->child[i & 3u]), tnear[i & 3u]};
                 };
                 const auto in_blocks = [&](std::uint32_t i) {
-                    return Pending{block[i / 4].child[i % 4], tnear[i]};
+                    return Pending{word(block[i / 4].child[i % 4]), tnear[i]};
                 };
                 const Pending next = n <= 4 ? descend(in_one_block) : descend(in_blocks);
                 if (Mode != TraversalMode::Closest || next.tnear <= tmax) {
-                    first = next.node.first, count = next.node.count;
+                    take(next.node);
                     continue;
                 }
             }
@@ -179,12 +193,13 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
             if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
             if (Mode == TraversalMode::AnyHit && t < kInfinity) return t;
         }
-        // Pop, field by field (copying the 12-byte entry out went through memory).
+        // Pop, the word and tnear read apart (copying the 12-byte entry out
+        // went through memory).
         do {
             if (top == 0) return nearest;
             --top;
         } while (Mode == TraversalMode::Closest && stack[top].tnear > tmax);  // culled after a hit
-        first = stack[top].node.first, count = stack[top].node.count;
+        take(stack[top].node);
     }
 }
 
