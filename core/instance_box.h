@@ -70,7 +70,9 @@ struct ObjectRayLanes {
 }
 
 // The object-space ray, exactly a.ray(ray) with tmax = `tmax`, on the lanes:
-// the scalar transform (two calls) cost about 60 instructions.
+// the scalar transform (two calls) cost about 60 instructions. (Where two
+// NaNs meet in a sum, the result's sign follows an operand order the
+// compiler may swap in either path: NaNs agree only as NaNs.)
 [[nodiscard, gnu::always_inline]] inline Ray object_ray(const Affine& a, const LaneRay& r, float tmax) {
     const ObjectRayLanes t = transform(a, r);
     Ray out;

@@ -88,9 +88,10 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
                 const float entry = intersect_instance_box(inst.object_from_world, leaf->box, lanes, tmax);
                 if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > tmax)) continue;
             }
-            // A BLAS to traverse gets its object ray on the lanes (bit for bit
-            // the scalar transform). The one-leaf path keeps the scalar one:
-            // with the lanes there, its misses spilled more (case 1 obb +0.9 %).
+            // A BLAS to traverse gets its object ray on the lanes (the scalar
+            // transform's floats, see object_ray). The one-leaf path keeps
+            // the scalar one: with the lanes there, its misses spilled more
+            // (case 1 obb +0.9 %).
             Ray object_ray = leaf ? inst.object_from_world.ray(ray)
                                   : rtc::object_ray(inst.object_from_world, lanes, tmax);
             object_ray.tmax = tmax;
