@@ -84,6 +84,27 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
     for (unsigned c = 0; c < node.mNumChildren; ++c) add_node(scene, *node.mChildren[c], m, out, file, depth + 1);
 }
 
+// A .gltf file is a JSON object, a .glb file starts with the magic "glTF".
+// Checked before assimp sees the file: when its glTF reader declines a file,
+// assimp tries every other format's reader on it, and one of those (assimp
+// 5.2) reads past the end of a short buffer (found by the fuzz harness on
+// the 14 bytes `metrict''''{"a`).
+void check_gltf_start(const std::vector<std::uint8_t>& bytes, const std::string& file, bool binary) {
+    const auto at = [&](std::size_t i, const char* text) {
+        for (std::size_t k = 0; text[k]; ++k)
+            if (i + k >= bytes.size() || bytes[i + k] != static_cast<std::uint8_t>(text[k])) return false;
+        return true;
+    };
+    if (binary) {
+        if (!at(0, "glTF")) throw InputError(file + ": byte 0: a .glb file must start with \"glTF\"");
+        return;
+    }
+    std::size_t i = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
+    while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
+    if (i >= bytes.size() || bytes[i] != '{')
+        throw InputError(file + ": byte " + std::to_string(i) + ": a .gltf file must be a JSON object (expected '{')");
+}
+
 std::string lower_extension(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -101,7 +122,9 @@ TriangleMesh load_assimp_mesh(const std::filesystem::path& file, std::uint64_t m
     if (size > max_bytes)
         throw InputError(name + ": " + std::to_string(size) + " bytes, more than the " + std::to_string(max_bytes) +
                          " a mesh may have");
-    if (lower_extension(file) == ".ply") check_ply(read_file_bytes(file), name);
+    const std::string ext = lower_extension(file);
+    if (ext == ".ply") check_ply(read_file_bytes(file), name);
+    if (ext == ".gltf" || ext == ".glb") check_gltf_start(read_file_bytes(file), name, ext == ".glb");
 
     Assimp::Importer importer;
     auto* io = new GuardedIO(max_bytes);  // owned by the importer

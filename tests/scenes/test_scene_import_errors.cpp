@@ -138,6 +138,12 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
     expect(ply_error("ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n0\n"),
            "bad.ply: line 4", "unknown property type \"float128\"");
 
+    // Not a JSON object / no magic: refused before assimp tries its other
+    // readers (one read past this short buffer, found by the fuzz harness).
+    const auto not_json = scratch_file("short.gltf", "metrict''''{\"a");
+    expect(error_of([&] { (void)load_mesh(not_json); }), "short.gltf", "byte 0: a .gltf file must be a JSON object");
+    const auto not_glb = scratch_file("short.glb", "  glTF");
+    expect(error_of([&] { (void)load_mesh(not_glb); }), "short.glb", "byte 0: a .glb file must start with");
     const auto gltf = scratch_file("bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {\"primitives\": 7} ]}");
     const std::string g = error_of([&] { (void)load_mesh(gltf); });
     CHECK(g.rfind(gltf.string() + ": cannot read the mesh: ", 0) == 0);
