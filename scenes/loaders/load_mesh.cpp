@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
+#include <string_view>
 
 namespace rtc {
 
@@ -88,21 +90,29 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
 // Checked before assimp sees the file: when its glTF reader declines a file,
 // assimp tries every other format's reader on it, and one of those (assimp
 // 5.2) reads past the end of a short buffer (found by the fuzz harness on
-// the 14 bytes `metrict''''{"a`).
-void check_gltf_start(const std::vector<std::uint8_t>& bytes, const std::string& file, bool binary) {
-    const auto at = [&](std::size_t i, const char* text) {
-        for (std::size_t k = 0; text[k]; ++k)
-            if (i + k >= bytes.size() || bytes[i + k] != static_cast<std::uint8_t>(text[k])) return false;
-        return true;
-    };
+// the 14 bytes `metrict''''{"a`). Reads only up to the first byte that is
+// not a byte-order mark or JSON whitespace: assimp reads the whole file next.
+void check_gltf_start(const std::filesystem::path& path, const std::string& file, bool binary) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(file + ": cannot open file");
     if (binary) {
-        if (!at(0, "glTF")) throw InputError(file + ": byte 0: a .glb file must start with \"glTF\"");
+        char magic[4] = {};
+        if (!in.read(magic, 4) || std::string_view(magic, 4) != "glTF")
+            throw InputError(file + ": byte 0: a .glb file must start with \"glTF\"");
         return;
     }
-    std::size_t i = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
-    while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
-    if (i >= bytes.size() || bytes[i] != '{')
-        throw InputError(file + ": byte " + std::to_string(i) + ": a .gltf file must be a JSON object (expected '{')");
+    const auto fail = [&](std::size_t at) {
+        throw InputError(file + ": byte " + std::to_string(at) + ": a .gltf file must be a JSON object (expected '{')");
+    };
+    std::size_t at = 0;
+    int c = in.get();
+    if (c == 0xEF) {  // a UTF-8 byte-order mark, or nothing a JSON text may start with
+        if (in.get() != 0xBB || in.get() != 0xBF) fail(0);
+        at = 3;
+        c = in.get();
+    }
+    for (; c == ' ' || c == '\t' || c == '\n' || c == '\r'; ++at) c = in.get();
+    if (c != '{') fail(at);
 }
 
 std::string lower_extension(const std::filesystem::path& file) {
@@ -124,7 +134,7 @@ TriangleMesh load_assimp_mesh(const std::filesystem::path& file, std::uint64_t m
                          " a mesh may have");
     const std::string ext = lower_extension(file);
     if (ext == ".ply") check_ply(read_file_bytes(file), name);
-    if (ext == ".gltf" || ext == ".glb") check_gltf_start(read_file_bytes(file), name, ext == ".glb");
+    if (ext == ".gltf" || ext == ".glb") check_gltf_start(file, name, ext == ".glb");
 
     Assimp::Importer importer;
     auto* io = new GuardedIO(max_bytes);  // owned by the importer

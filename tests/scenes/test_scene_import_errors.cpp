@@ -144,6 +144,14 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
     expect(error_of([&] { (void)load_mesh(not_json); }), "short.gltf", "byte 0: a .gltf file must be a JSON object");
     const auto not_glb = scratch_file("short.glb", "  glTF");
     expect(error_of([&] { (void)load_mesh(not_glb); }), "short.glb", "byte 0: a .glb file must start with");
+    // Only the start is read: the byte named is the first that is not a
+    // byte-order mark or whitespace; a file with no object at all ends there.
+    const auto spaced = scratch_file("spaced.gltf", "\xEF\xBB\xBF \r\n\t[]");
+    expect(error_of([&] { (void)load_mesh(spaced); }), "spaced.gltf", "byte 7: a .gltf file must be a JSON object");
+    const auto blank = scratch_file("blank.gltf", "   ");
+    expect(error_of([&] { (void)load_mesh(blank); }), "blank.gltf", "byte 3: a .gltf file must be a JSON object");
+    const auto half_mark = scratch_file("mark.gltf", "\xEF\xBB{");
+    expect(error_of([&] { (void)load_mesh(half_mark); }), "mark.gltf", "byte 0: a .gltf file must be a JSON object");
     const auto gltf = scratch_file("bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {\"primitives\": 7} ]}");
     const std::string g = error_of([&] { (void)load_mesh(gltf); });
     CHECK(g.rfind(gltf.string() + ": cannot read the mesh: ", 0) == 0);
