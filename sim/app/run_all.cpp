@@ -14,6 +14,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 
 namespace rtc {
@@ -151,8 +152,18 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         if (frames) ctx.frame_source = [frames, i](const std::string& method) { return (*frames)(i, method); };
         RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
         write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
-        if (parsed[i].output.images) write_images(r, dir);
-        if (parsed[i].output.arrays) (void)write_arrays(r, dir);
+        {
+            // The arrays (140 MB on the head frame, mostly the kernel's copy
+            // into the page cache) are written while the pictures are
+            // encoded; an error of either is reported, the pictures' first.
+            std::future<void> arrays;
+            if (parsed[i].output.arrays && cli.threads != 1)
+                arrays = std::async(std::launch::async, [&] { (void)write_arrays(r, dir); });
+            else if (parsed[i].output.arrays)
+                (void)write_arrays(r, dir);
+            if (parsed[i].output.images) write_images(r, dir, cli.threads);
+            if (arrays.valid()) arrays.get();
+        }
         (void)write_break_even_maps(r, dir);
         traced.reset();
         // (Ray and hit files are written while tracing: such points trace.)

@@ -48,8 +48,9 @@ void write_sweep_outputs(const std::vector<RunResult>& runs, const std::vector<s
 std::vector<std::string> write_arrays(const RunResult& run, const std::string& dir);
 
 // Render, per-method heat maps of cycles and IS calls per pixel on common
-// scales, and the ref/obb ratio map, into `dir`. No-op for ray-file workloads.
-void write_images(const RunResult& run, const std::string& dir);
+// scales, and the ref/obb ratio map, into `dir`, on `threads` threads (0: all
+// cores). No-op for ray-file workloads.
+void write_images(const RunResult& run, const std::string& dir, unsigned threads = 0);
 
 // The config's break-even maps for this run (break_even_<name>.png in `dir`):
 // per cell of two swept costs, the cheapest method and its margin. Returns
