@@ -183,8 +183,7 @@ private:
             for (std::uint64_t m = mask[axis]; m != 0; m &= m - 1) {
                 const int b = std::countr_zero(m);
                 small_used_.bin[axis][small_used_.count[axis]++] = b;
-                small_bins_.box[axis][b] = {};
-                small_bins_.count[axis][b] = 0;
+                small_bins_.bin[axis][b] = {};
             }
         }
         for (std::uint32_t i = t.begin; i < t.end; ++i) small_bins_.add(src[i], small_bin_[i - t.begin]);
@@ -216,18 +215,17 @@ private:
     std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
                             const Split& best, Bounds& left, Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
-        const auto plane = static_cast<float>(best.bin);
+        const BinMap::Plane plane(map, best.axis, static_cast<float>(best.bin));
         if (n == 1) {
             std::uint32_t n_left = 0;
-            for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].count[best.axis][b];
-            return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) {
-                return map.below(src[i], best.axis, plane);
-            }, left, right);
+            for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].bin[best.axis][b].count;
+            return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) { return plane.below(src[i]); },
+                                    left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
         std::vector<std::uint32_t> left_at(n + 1, 0);
         for (std::uint32_t k = 0; k < n; ++k)
-            for (int b = 0; b < best.bin; ++b) left_at[k + 1] += chunk_bins_[k].count[best.axis][b];
+            for (int b = 0; b < best.bin; ++b) left_at[k + 1] += chunk_bins_[k].bin[best.axis][b].count;
         const std::uint32_t n_left = left_at[1];
         for (std::uint32_t k = 1; k < n; ++k) left_at[1] -= left_at[k + 1];
         left_at[0] = t.begin;
@@ -237,7 +235,7 @@ private:
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = map.below(src[i], best.axis, plane);
+                const bool goes_left = plane.below(src[i]);
                 dst[goes_left ? l++ : r++] = src[i];
                 parts[k][goes_left ? 0 : 1].add(src[i]);
             }

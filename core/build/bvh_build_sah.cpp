@@ -34,8 +34,7 @@ Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, 
     Split best;
     for (int axis = 0; axis < 3; ++axis) {
         if (!map.active[axis]) continue;
-        const auto& box = bins.box[axis];
-        const auto& count = bins.count[axis];
+        const auto& bin = bins.bin[axis];
         const auto& u = used.bin[axis];
         const int m = used.count[axis];
         // Right-to-left sweep stores the cost of each right part.
@@ -43,15 +42,15 @@ Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, 
         Box4 acc;
         std::uint32_t n = 0;
         for (int j = m - 1; j > 0; --j) {
-            acc.extend(box[u[j]].lo, box[u[j]].hi);
-            n += count[u[j]];
+            acc.extend(bin[u[j]].box.lo, bin[u[j]].box.hi);
+            n += bin[u[j]].count;
             right_cost[j] = area(acc) * static_cast<float>(n);
         }
         acc = {};
         n = 0;
         for (int j = 1; j < m; ++j) {  // plane after bin u[j - 1]
-            acc.extend(box[u[j - 1]].lo, box[u[j - 1]].hi);
-            n += count[u[j - 1]];
+            acc.extend(bin[u[j - 1]].box.lo, bin[u[j - 1]].box.hi);
+            n += bin[u[j - 1]].count;
             const float cost = plane_cost(o, area(acc) * static_cast<float>(n), right_cost[j], inv_area);
             if (cost < best.cost) best = {axis, u[j - 1] + 1, cost};  // strict: ties keep the first
         }

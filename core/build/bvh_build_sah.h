@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 
 namespace rtc::bvh_detail {
 
@@ -51,31 +52,56 @@ struct BinMap {
         return b > last ? last : b;
 #endif
     }
-    // of(r)[axis] < bin for a plane 1 <= bin <= bins - 1, on one lane: the
-    // clamped bin is below `bin` exactly when the unclamped x is (x >= 2^31
-    // and NaN go to bin 0, which is always below).
-    [[nodiscard]] bool below(const Ref& r, int axis, float bin) const {
-        const float x = (r.centroid[axis] - lo[axis]) * scale[axis];
-        return !(x >= bin && x < 2147483648.0f);
-    }
+    // Plane(map, axis, bin).below(r) is of(r)[axis] < bin for a plane
+    // 1 <= bin <= bins - 1, on one lane: the clamped bin is below `bin`
+    // exactly when the unclamped x is (x >= 2^31 and NaN go to bin 0, which
+    // is always below). The axis's constants are taken out of the
+    // partition's loop over the references, and the centroid's coordinate is
+    // read at its byte offset (glm's operator[] is a switch: three compares
+    // and branches per reference).
+    struct Plane {
+        std::size_t offset;
+        float lo, scale, bin;
+        Plane(const BinMap& map, int axis, float plane)
+            : offset(sizeof(float) * static_cast<std::size_t>(axis)), lo(map.lo[axis]), scale(map.scale[axis]),
+              bin(plane) {}
+        [[nodiscard]] bool below(const Ref& r) const {
+            float c;
+            std::memcpy(&c, reinterpret_cast<const unsigned char*>(&r.centroid) + offset, sizeof c);
+            const float x = (c - lo) * scale;
+            return !(x >= bin && x < 2147483648.0f);
+        }
+    };
+};
+
+// One bin: its box and its count side by side, a bin to a cache line, so that
+// binning a reference reaches both from one offset per axis (as two arrays,
+// box and count, each axis took two address computations: the big nodes'
+// binning loop was 51 instructions per reference).
+struct alignas(64) Bin {
+    Box4 box;
+    std::uint32_t count = 0;
 };
 
 struct Bins {
-    std::array<std::array<Box4, kMaxBins>, 3> box;
-    std::array<std::array<std::uint32_t, kMaxBins>, 3> count;
+    std::array<std::array<Bin, kMaxBins>, 3> bin;
 
     void reset(int bins) {
         for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < bins; ++b) box[axis][b] = {}, count[axis][b] = 0;
+            for (int b = 0; b < bins; ++b) bin[axis][b] = {};
     }
     // All three axes at once, branch-free (an axis without spread is never
     // priced).
+    // The three bins' byte offsets come from one shift of the bin vector
+    // (indexing bin[axis][b[axis]] costs a shift and an add per axis).
     void add(const Ref& r, I4 b) {
         const V4 rlo = r.lanes(r.lo), rhi = r.lanes(r.hi);
+        const I4 offset = b * static_cast<std::int32_t>(sizeof(Bin));  // 0 .. (bins - 1) x 64
         for (int axis = 0; axis < 3; ++axis) {
-            const auto k = static_cast<std::uint32_t>(b[axis]);  // 0..bins-1: no sign extension
-            box[axis][k].extend(rlo, rhi);
-            ++count[axis][k];
+            auto* const row = reinterpret_cast<unsigned char*>(bin[axis].data());
+            Bin& into = *reinterpret_cast<Bin*>(row + static_cast<std::uint32_t>(offset[axis]));
+            into.box.extend(rlo, rhi);
+            ++into.count;
         }
     }
     void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
@@ -83,9 +109,10 @@ struct Bins {
     }
     void add(const Bins& o, int bins) {  // o's primitives come after ours
         for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < bins; ++b)
-                box[axis][b].extend(o.box[axis][b].lo, o.box[axis][b].hi),
-                    count[axis][b] += o.count[axis][b];
+            for (int b = 0; b < bins; ++b) {
+                bin[axis][b].box.extend(o.bin[axis][b].box.lo, o.bin[axis][b].box.hi);
+                bin[axis][b].count += o.bin[axis][b].count;
+            }
     }
 };
 
@@ -102,7 +129,7 @@ struct Occupied {
     Occupied(const Bins& bins, const BinMap& map) {
         for (int axis = 0; axis < 3; ++axis)
             for (int b = 0; b < map.bins; ++b)
-                if (bins.count[axis][b] > 0) bin[axis][count[axis]++] = b;
+                if (bins.bin[axis][b].count > 0) bin[axis][count[axis]++] = b;
     }
 };
 
