@@ -99,14 +99,12 @@ struct Bvh {
     }
 };
 
-// Builds a BVH over `boxes` (one per primitive), splitting on `centroids`
-// (box centres when empty). Deterministic: the same input gives the same tree,
-// ties go to the smallest axis, bin and primitive index, whatever the thread
-// count. Throws
-// std::invalid_argument naming the first primitive whose box or centroid is
-// NaN or infinite.
-[[nodiscard]] Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options = {},
-                            std::span<const Vec3> centroids = {});
+// Builds a BVH over `boxes` (one per primitive), splitting on the boxes'
+// centres. Deterministic: the same input gives the same tree, ties go to the
+// smallest axis, bin and primitive index, whatever the thread count. Throws
+// std::invalid_argument naming the first primitive whose box or centre is
+// NaN or infinite, or whose box is inverted.
+[[nodiscard]] Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options = {});
 
 // Derives `bvh.lanes` from `bvh.root` and `bvh.entries` on `threads` threads
 // (build_bvh() calls it; call it for trees made by hand). Blocks follow the

@@ -44,15 +44,12 @@ std::array<std::uint32_t, 8> collapse_children(const bvh_detail::BinaryNodes& no
 }
 }  // namespace
 
-Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
-              std::span<const Vec3> centroids) {
+Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options) {
     if (options.width != 2 && options.width != 4 && options.width != 8)
         throw std::invalid_argument("BVH build: width must be 2, 4 or 8, got " +
                                     std::to_string(options.width));
     if (options.max_leaf_size < 1)
         throw std::invalid_argument("BVH build: max_leaf_size must be at least 1");
-    if (!centroids.empty() && centroids.size() != boxes.size())
-        throw std::invalid_argument("BVH build: one centroid per box expected");
     const unsigned threads =
         options.threads > 0 ? static_cast<unsigned>(options.threads) : hardware_threads();
 
@@ -62,7 +59,7 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options,
     const std::size_t n = boxes.size();
     bvh.prim_ids.resize(n);
     const bvh_detail::BinaryTree tree =
-        bvh_detail::build_binary_tree(boxes, centroids, options, threads, bvh.prim_ids);
+        bvh_detail::build_binary_tree(boxes, options, threads, bvh.prim_ids);
     if (n == 0) return bvh;
     const bvh_detail::BinaryNodes& nodes = tree.nodes;
     const std::uint32_t root = tree.root;

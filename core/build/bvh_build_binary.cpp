@@ -105,8 +105,8 @@ public:
             const Ref& r = src[t.begin + !swap];
             dst[t.begin] = l;
             dst[t.begin + 1] = r;
-            left.bounds = {l.box(), {l.centroid, l.centroid}};
-            right.bounds = {r.box(), {r.centroid, r.centroid}};
+            left.bounds = {l.box(), {l.centroid(), l.centroid()}};
+            right.bounds = {r.box(), {r.centroid(), r.centroid()}};
             mid = t.begin + 1;
         } else if (small) {
             const auto goes_left = [&](std::uint32_t i) { return small_bin_[i - t.begin][best.axis] < best.bin; };
@@ -202,7 +202,7 @@ private:
             const bool to_left = goes_left(i);
             dst[to_left ? l++ : r++] = ref;
             box[!to_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
-            const V4 c = ref.lanes(ref.centroid);
+            const V4 c = ref.centroid_lanes();
             cbox[!to_left].extend(c, c);
         }
         left = {box[0].aabb(), cbox[0].aabb()};
@@ -253,7 +253,7 @@ private:
         const std::uint32_t mid = t.begin + (t.end - t.begin) / 2;
         std::copy(src + t.begin, src + t.end, dst + t.begin);
         std::nth_element(dst + t.begin, dst + mid, dst + t.end, [&](const Ref& a, const Ref& b) {
-            const float ca = a.centroid[axis], cb = b.centroid[axis];
+            const float ca = a.centroid()[axis], cb = b.centroid()[axis];
             return ca < cb || (ca == cb && a.id < b.id);
         });
         left = right = {};
@@ -272,8 +272,7 @@ bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && 
 
 // Fills buffer 0 with the references and returns the root's bounds; throws
 // for the first invalid primitive, whichever thread met it.
-Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centroids,
-            unsigned threads) {
+Bounds load(Shared& s, std::span<const Aabb> boxes, unsigned threads) {
     const std::size_t n = boxes.size();
     const std::size_t n_chunks = (n + kChunk - 1) / kChunk;
     std::vector<Bounds> parts(n_chunks);
@@ -283,21 +282,21 @@ Bounds load(Shared& s, std::span<const Aabb> boxes, std::span<const Vec3> centro
         Box4 box, cbox;  // the comparisons of Bounds::add, on lanes
         for (std::size_t i = k * kChunk; i < std::min(n, (k + 1) * kChunk); ++i) {
             const Aabb& b = boxes[i];
-            // The centre as Aabb::center() computes it.
-            const Vec3 c = centroids.empty() ? b.center() : centroids[i];
-            if (first_bad[k] == n && (!b.finite() || !finite(c) || b.empty())) first_bad[k] = i;
-            const Ref& r = refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f, c, 0.0f};
+            // A finite box whose centre overflows is refused too: every
+            // split works with the centres.
+            if (first_bad[k] == n && (!b.finite() || !finite(b.center()) || b.empty())) first_bad[k] = i;
+            const Ref& r = refs[i] = {b.lo, static_cast<std::uint32_t>(i), b.hi, 0.0f};
             box.extend(r.lanes(r.lo), r.lanes(r.hi));
-            cbox.extend(r.lanes(r.centroid), r.lanes(r.centroid));
+            const V4 c = r.centroid_lanes();
+            cbox.extend(c, c);
         }
         parts[k] = {box.aabb(), cbox.aabb()};
     }, 1);
     for (std::size_t k = 0; k < n_chunks; ++k) {
         const std::size_t i = first_bad[k];
         if (i == n) continue;
-        const Vec3 c = centroids.empty() ? boxes[i].center() : centroids[i];
         throw std::invalid_argument("BVH build: primitive " + std::to_string(i) +
-                                    (boxes[i].finite() && finite(c)
+                                    (boxes[i].finite() && finite(boxes[i].center())
                                          ? " has an inverted (empty) bounding box"
                                          : " has a NaN or infinite bounding box"));
     }
@@ -355,13 +354,12 @@ std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root
 }
 }  // namespace
 
-BinaryTree build_binary_tree(std::span<const Aabb> boxes, std::span<const Vec3> centroids,
-                             const BuildOptions& options, unsigned threads,
+BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& options, unsigned threads,
                              std::vector<std::uint32_t>& prim_ids) {
     const std::size_t n = boxes.size();
     Shared s{options, std::clamp(options.bins, 2, kMaxBins), {}, {}, prim_ids};
     s.refs[0] = std::make_unique_for_overwrite<Ref[]>(n);
-    const Bounds root_bounds = load(s, boxes, centroids, threads);
+    const Bounds root_bounds = load(s, boxes, threads);
     BinaryTree tree;
     if (n == 0) return tree;
     s.refs[1] = std::make_unique_for_overwrite<Ref[]>(n);

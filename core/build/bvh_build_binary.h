@@ -35,12 +35,12 @@ struct BinaryTree {
     std::size_t count = 0;          // nodes in the tree
 };
 
-// Builds the binary tree over `boxes` (split on `centroids`, box centres when
-// empty) on `threads` threads, filling prim_ids (sized to the box count) with
-// the primitives in leaf order. Throws std::invalid_argument naming the first
-// invalid primitive. Empty input gives an empty tree.
-[[nodiscard]] BinaryTree build_binary_tree(std::span<const Aabb> boxes, std::span<const Vec3> centroids,
-                                           const BuildOptions& options, unsigned threads,
+// Builds the binary tree over `boxes` (split on their centres) on `threads`
+// threads, filling prim_ids (sized to the box count) with the primitives in
+// leaf order. Throws std::invalid_argument naming the first invalid
+// primitive. Empty input gives an empty tree.
+[[nodiscard]] BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& options,
+                                           unsigned threads,
                                            std::vector<std::uint32_t>& prim_ids);
 
 }  // namespace rtc::bvh_detail

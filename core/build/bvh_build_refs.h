@@ -40,22 +40,29 @@ struct Box4 {
 };
 
 // Trivial, so that the large reference buffers are allocated, not zeroed.
-// Each vector starts a 16-byte lane group; the centroid's spare lane is zero
-// so that arithmetic on it never meets a denormal.
+// Each vector starts a 16-byte lane group. 32 bytes: the centroid is the
+// box's centre, Aabb::center()'s operations worked out where it is used
+// rather than stored (every split streams all references of its node from
+// one buffer into the other; with a stored centroid a reference was 48 bytes).
 struct alignas(16) Ref {
     Vec3 lo;
     std::uint32_t id;
     Vec3 hi;
-    float unused;
-    Vec3 centroid;
-    float zero;
+    float zero;  // so that arithmetic on hi's spare lane never meets a denormal
     [[nodiscard]] Aabb box() const { return {lo, hi}; }
     [[nodiscard]] V4 lanes(const Vec3& member) const {  // member of this Ref and the word after it
         V4 v;
         std::memcpy(&v, &member, sizeof v);
         return v;
     }
+    [[nodiscard]] Vec3 centroid() const { return 0.5f * (lo + hi); }  // Aabb::center()
+    // centroid() in lanes 0-2, lane 3 zero (the id in lo's spare lane is masked).
+    [[nodiscard]] V4 centroid_lanes() const {
+        const V4 l = reinterpret_cast<V4>(reinterpret_cast<I4>(lanes(lo)) & I4{-1, -1, -1, 0});
+        return 0.5f * (l + lanes(hi));
+    }
 };
+static_assert(sizeof(Ref) == 32);
 
 static_assert(std::is_trivially_default_constructible_v<Ref>);
 
@@ -64,7 +71,7 @@ struct Bounds {
     Aabb box, cbox;  // of the primitives' boxes, of their centroids
     void add(const Ref& r) {
         box.extend(r.box());
-        cbox.extend(r.centroid);
+        cbox.extend(r.centroid());
     }
     void add(const Bounds& b) {
         box.extend(b.box);

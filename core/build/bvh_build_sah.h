@@ -39,7 +39,7 @@ struct BinMap {
     // the conversion's quirks (NaN and |x| >= 2^31 give INT_MIN, so bin 0).
     // An axis without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
-        const V4 x = (r.lanes(r.centroid) - lo4) * scale4;
+        const V4 x = (r.centroid_lanes() - lo4) * scale4;
 #ifdef __SSE__
         // Clamped as floats (SSE2 has no integer min/max), to the same bins:
         // maxps picks 0 for NaN, and the mask sends x >= 2^31 to bin 0.
@@ -56,8 +56,8 @@ struct BinMap {
     // 1 <= bin <= bins - 1, on one lane: the clamped bin is below `bin`
     // exactly when the unclamped x is (x >= 2^31 and NaN go to bin 0, which
     // is always below). The axis's constants are taken out of the
-    // partition's loop over the references, and the centroid's coordinate is
-    // read at its byte offset (glm's operator[] is a switch: three compares
+    // partition's loop over the references, and the box's coordinates are
+    // read at their byte offset (glm's operator[] is a switch: three compares
     // and branches per reference).
     struct Plane {
         std::size_t offset;
@@ -66,9 +66,10 @@ struct BinMap {
             : offset(sizeof(float) * static_cast<std::size_t>(axis)), lo(map.lo[axis]), scale(map.scale[axis]),
               bin(plane) {}
         [[nodiscard]] bool below(const Ref& r) const {
-            float c;
-            std::memcpy(&c, reinterpret_cast<const unsigned char*>(&r.centroid) + offset, sizeof c);
-            const float x = (c - lo) * scale;
+            float rlo, rhi;
+            std::memcpy(&rlo, reinterpret_cast<const unsigned char*>(&r.lo) + offset, sizeof rlo);
+            std::memcpy(&rhi, reinterpret_cast<const unsigned char*>(&r.hi) + offset, sizeof rhi);
+            const float x = (0.5f * (rlo + rhi) - lo) * scale;  // the centroid's coordinate, as centroid()
             return !(x >= bin && x < 2147483648.0f);
         }
     };
