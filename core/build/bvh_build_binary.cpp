@@ -234,11 +234,16 @@ private:
         parallel_for(n, threads, [&](std::size_t k, unsigned) {
             const auto [begin, end] = chunk(t, k, n);
             std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
+            std::array<Box4, 2> box, cbox;  // left, right: Bounds::add's comparisons, on lanes
             for (std::uint32_t i = begin; i < end; ++i) {
-                const bool goes_left = plane.below(src[i]);
-                dst[goes_left ? l++ : r++] = src[i];
-                parts[k][goes_left ? 0 : 1].add(src[i]);
+                const Ref& ref = src[i];
+                const bool goes_left = plane.below(ref);
+                dst[goes_left ? l++ : r++] = ref;
+                box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
+                const V4 c = ref.centroid_lanes();
+                cbox[!goes_left].extend(c, c);
             }
+            parts[k] = {Bounds{box[0].aabb(), cbox[0].aabb()}, Bounds{box[1].aabb(), cbox[1].aabb()}};
         }, 1);
         left = right = {};
         for (const auto& p : parts) left.add(p[0]), right.add(p[1]);
