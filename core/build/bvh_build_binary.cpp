@@ -44,9 +44,24 @@ struct Shared {
     const BuildOptions& options;
     int bins;
     std::array<std::unique_ptr<Ref[]>, 2> refs;
+    // A big node's binning keeps each reference's three bins here (one byte
+    // each, by position in the node's buffer) for its partition, which then
+    // places every reference by the very bins that were counted.
+    std::unique_ptr<std::uint32_t[]> ref_bins;
     BinaryNodes nodes;
     std::vector<std::uint32_t>& prim_ids;
 };
+
+// A reference's three bins (0 .. 63, lane 3 is 0) as bytes 0, 1 and 2.
+std::uint32_t pack_bins(I4 b) {
+#ifdef __SSE2__
+    const __m128i words = _mm_packs_epi32(reinterpret_cast<__m128i>(b), reinterpret_cast<__m128i>(b));
+    return static_cast<std::uint32_t>(_mm_cvtsi128_si32(_mm_packus_epi16(words, words)));
+#else
+    return static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+           static_cast<std::uint32_t>(b[2]) << 16;
+#endif
+}
 
 // Splits nodes, either one big node with `threads` threads or a whole subtree
 // on the calling thread; owns the scratch this needs.
@@ -114,7 +129,7 @@ public:
             for (std::uint32_t i = t.begin; i < t.end; ++i) n_left += goes_left(i);
             mid = partition_serial(src, dst, t, n_left, goes_left, left.bounds, right.bounds);
         } else {
-            mid = partition(src, dst, t, map, best, left.bounds, right.bounds, threads);
+            mid = partition(src, dst, t, best, left.bounds, right.bounds, threads);
         }
         left = {0, t.begin, mid, t.depth + 1, left.bounds};
         right = {0, mid, t.end, t.depth + 1, right.bounds};
@@ -160,10 +175,16 @@ private:
     const Bins& bin(const Ref* src, const Task& t, const BinMap& map, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
         chunk_bins_.resize(std::max<std::size_t>(chunk_bins_.size(), n));
+        std::uint32_t* ref_bins = s_.ref_bins.get();
         parallel_for(n, threads, [&](std::size_t k, unsigned) {
             const auto [begin, end] = chunk(t, k, n);
-            chunk_bins_[k].reset(map.bins);
-            chunk_bins_[k].add(src, begin, end, map);
+            Bins& bins = chunk_bins_[k];
+            bins.reset(map.bins);
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const I4 b = map.of(src[i]);
+                ref_bins[i] = pack_bins(b);
+                bins.add(src[i], b);
+            }
         }, 1);
         for (std::uint32_t k = 1; k < n; ++k) chunk_bins_[0].add(chunk_bins_[k], map.bins);
         return chunk_bins_[0];  // chunks beyond the first keep their own counts
@@ -212,15 +233,18 @@ private:
 
     // Stable partition by bin into dst; each chunk's left part starts after the
     // left parts of the chunks before it, known from the chunk's bin counts.
-    std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const BinMap& map,
-                            const Split& best, Bounds& left, Bounds& right, unsigned threads) {
+    std::uint32_t partition(const Ref* src, Ref* dst, const Task& t, const Split& best, Bounds& left,
+                            Bounds& right, unsigned threads) {
         const std::uint32_t n = chunks(t, threads);
-        const BinMap::Plane plane(map, best.axis, static_cast<float>(best.bin));
+        const std::uint32_t* ref_bins = s_.ref_bins.get();
+        const int shift = 8 * best.axis;
+        const auto below = [&, bin = static_cast<std::uint32_t>(best.bin)](std::uint32_t i) {
+            return ((ref_bins[i] >> shift) & 0xFFu) < bin;
+        };
         if (n == 1) {
             std::uint32_t n_left = 0;
             for (int b = 0; b < best.bin; ++b) n_left += chunk_bins_[0].bin[best.axis][b].count;
-            return partition_serial(src, dst, t, n_left, [&](std::uint32_t i) { return plane.below(src[i]); },
-                                    left, right);
+            return partition_serial(src, dst, t, n_left, below, left, right);
         }
         // Left counts per chunk; chunk 0's bins were summed into the node's.
         std::vector<std::uint32_t> left_at(n + 1, 0);
@@ -237,7 +261,7 @@ private:
             std::array<Box4, 2> box, cbox;  // left, right: Bounds::add's comparisons, on lanes
             for (std::uint32_t i = begin; i < end; ++i) {
                 const Ref& ref = src[i];
-                const bool goes_left = plane.below(ref);
+                const bool goes_left = below(i);
                 dst[goes_left ? l++ : r++] = ref;
                 box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
                 const V4 c = ref.centroid_lanes();
@@ -362,12 +386,13 @@ std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root
 BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& options, unsigned threads,
                              std::vector<std::uint32_t>& prim_ids) {
     const std::size_t n = boxes.size();
-    Shared s{options, std::clamp(options.bins, 2, kMaxBins), {}, {}, prim_ids};
+    Shared s{options, std::clamp(options.bins, 2, kMaxBins), {}, {}, {}, prim_ids};
     s.refs[0] = std::make_unique_for_overwrite<Ref[]>(n);
     const Bounds root_bounds = load(s, boxes, threads);
     BinaryTree tree;
     if (n == 0) return tree;
     s.refs[1] = std::make_unique_for_overwrite<Ref[]>(n);
+    s.ref_bins = std::make_unique_for_overwrite<std::uint32_t[]>(n);
     std::tie(tree.root, tree.count) = build_binary(s, root_bounds, threads);
     tree.nodes = std::move(s.nodes);
     return tree;

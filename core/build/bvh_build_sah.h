@@ -34,8 +34,7 @@ struct BinMap {
         last = I4{} + (bins - 1);
         lastf = V4{} + static_cast<float>(bins - 1);
     }
-    // All three axes at once (also for the partition: one axis alone costs no
-    // less): clamp(int((c - lo) * scale), 0, bins - 1) in each lane, with
+    // All three axes at once: clamp(int((c - lo) * scale), 0, bins - 1) in each lane, with
     // the conversion's quirks (NaN and |x| >= 2^31 give INT_MIN, so bin 0).
     // An axis without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
@@ -52,27 +51,6 @@ struct BinMap {
         return b > last ? last : b;
 #endif
     }
-    // Plane(map, axis, bin).below(r) is of(r)[axis] < bin for a plane
-    // 1 <= bin <= bins - 1, on one lane: the clamped bin is below `bin`
-    // exactly when the unclamped x is (x >= 2^31 and NaN go to bin 0, which
-    // is always below). The axis's constants are taken out of the
-    // partition's loop over the references, and the box's coordinates are
-    // read at their byte offset (glm's operator[] is a switch: three compares
-    // and branches per reference).
-    struct Plane {
-        std::size_t offset;
-        float lo, scale, bin;
-        Plane(const BinMap& map, int axis, float plane)
-            : offset(sizeof(float) * static_cast<std::size_t>(axis)), lo(map.lo[axis]), scale(map.scale[axis]),
-              bin(plane) {}
-        [[nodiscard]] bool below(const Ref& r) const {
-            float rlo, rhi;
-            std::memcpy(&rlo, reinterpret_cast<const unsigned char*>(&r.lo) + offset, sizeof rlo);
-            std::memcpy(&rhi, reinterpret_cast<const unsigned char*>(&r.hi) + offset, sizeof rhi);
-            const float x = (0.5f * (rlo + rhi) - lo) * scale;  // the centroid's coordinate, as centroid()
-            return !(x >= bin && x < 2147483648.0f);
-        }
-    };
 };
 
 // One bin: its box and its count side by side, a bin to a cache line, so that
@@ -104,9 +82,6 @@ struct Bins {
             into.box.extend(rlo, rhi);
             ++into.count;
         }
-    }
-    void add(const Ref* refs, std::uint32_t begin, std::uint32_t end, const BinMap& map) {
-        for (std::uint32_t i = begin; i < end; ++i) add(refs[i], map.of(refs[i]));
     }
     void add(const Bins& o, int bins) {  // o's primitives come after ours
         for (int axis = 0; axis < 3; ++axis)
