@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 
 namespace rtc::bvh_detail {
 
@@ -34,9 +33,9 @@ struct BinMap {
         last = I4{} + (bins - 1);
         lastf = V4{} + static_cast<float>(bins - 1);
     }
-    // All three axes at once: clamp(int((c - lo) * scale), 0, bins - 1) in each lane, with
-    // the conversion's quirks (NaN and |x| >= 2^31 give INT_MIN, so bin 0).
-    // An axis without spread puts everything into bin 0.
+    // All three axes at once: clamp(int((c - lo) * scale), 0, bins - 1) in
+    // each lane, with the conversion's quirks (NaN and |x| >= 2^31 give
+    // INT_MIN, so bin 0). An axis without spread puts everything into bin 0.
     [[nodiscard]] I4 of(const Ref& r) const {
         const V4 x = (r.centroid_lanes() - lo4) * scale4;
 #ifdef __SSE__
