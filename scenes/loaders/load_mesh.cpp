@@ -6,6 +6,7 @@
 // header and ASCII body are checked line by line (ply_check.h). assimp's own
 // errors become an InputError naming the file.
 #include "scenes/loaders/file_bytes.h"
+#include "scenes/loaders/gltf_check.h"
 #include "scenes/loaders/loaders.h"
 #include "scenes/loaders/ply_check.h"
 #include "scenes/generators/strand_builder.h"
@@ -134,7 +135,10 @@ TriangleMesh load_assimp_mesh(const std::filesystem::path& file, std::uint64_t m
                          " a mesh may have");
     const std::string ext = lower_extension(file);
     if (ext == ".ply") check_ply(read_file_bytes(file), name);
-    if (ext == ".gltf" || ext == ".glb") check_gltf_start(file, name, ext == ".glb");
+    if (ext == ".gltf" || ext == ".glb") {
+        check_gltf_start(file, name, ext == ".glb");
+        check_gltf_json(file, name, ext == ".glb");
+    }
 
     Assimp::Importer importer;
     auto* io = new GuardedIO(max_bytes);  // owned by the importer
