@@ -57,6 +57,8 @@ void check_gltf_json(const std::filesystem::path& path, const std::string& file,
         root = nlohmann::json::parse(read_json_text(path, file, binary));
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(file + ": byte " + std::to_string(e.byte + (binary ? 20 : 0)) + ": invalid JSON");
+    } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double (found by fuzz_gltf)
+        throw InputError(file + ": invalid JSON: " + e.what());
     }
     if (!root.is_object()) throw InputError(file + ": the glTF JSON is not an object");
     const auto meshes = root.find("meshes");

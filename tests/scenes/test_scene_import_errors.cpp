@@ -168,6 +168,8 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
            "JSON key /meshes/0/primitives/0/attributes/POSITION: names accessors 3, the file has 1");
     expect(error_of([&] { (void)load_mesh(scratch_file("cut.gltf", "{\"meshes\": [")); }), "cut.gltf",
            "invalid JSON");
+    expect(error_of([&] { (void)load_mesh(scratch_file("huge.gltf", "{\"scene\": 5E555550}")); }), "huge.gltf",
+           "invalid JSON");
     expect(error_of([&] { (void)load_mesh(scratch_file("bin.glb", std::string("glTF\2\0\0\0\40\0\0\0\4\0\0\0BIN\0", 20))); }),
            "bin.glb", "byte 16: the first .glb chunk is not JSON");
     // What passes the check and assimp still refuses: its reason, after the file.
