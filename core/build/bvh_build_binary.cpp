@@ -211,14 +211,15 @@ private:
         return small_bins_;
     }
 
-    // Stable partition of the range into dst: the n_left references for which
-    // goes_left(i) holds first, in order, then the rest; also their bounds.
+    // Stable partition of src[begin, end) into dst: the references for which
+    // goes_left(i) holds go to dst[l, ...) in order, the rest to dst[r, ...);
+    // also the bounds of each side. Returns the end of the left part.
     template <class GoesLeft>
-    static std::uint32_t partition_serial(const Ref* src, Ref* dst, const Task& t, std::uint32_t n_left,
-                                          GoesLeft goes_left, Bounds& left, Bounds& right) {
-        std::uint32_t l = t.begin, r = t.begin + n_left;
-        std::array<Box4, 2> box, cbox;  // left, right
-        for (std::uint32_t i = t.begin; i < t.end; ++i) {
+    static std::uint32_t partition_range(const Ref* src, Ref* dst, std::uint32_t begin, std::uint32_t end,
+                                         std::uint32_t l, std::uint32_t r, GoesLeft goes_left, Bounds& left,
+                                         Bounds& right) {
+        std::array<Box4, 2> box, cbox;  // left, right: Bounds::add's comparisons, on lanes
+        for (std::uint32_t i = begin; i < end; ++i) {
             const Ref& ref = src[i];
             const bool to_left = goes_left(i);
             dst[to_left ? l++ : r++] = ref;
@@ -229,6 +230,12 @@ private:
         left = {box[0].aabb(), cbox[0].aabb()};
         right = {box[1].aabb(), cbox[1].aabb()};
         return l;
+    }
+    // The whole range of t, its n_left left references first.
+    template <class GoesLeft>
+    static std::uint32_t partition_serial(const Ref* src, Ref* dst, const Task& t, std::uint32_t n_left,
+                                          GoesLeft goes_left, Bounds& left, Bounds& right) {
+        return partition_range(src, dst, t.begin, t.end, t.begin, t.begin + n_left, goes_left, left, right);
     }
 
     // Stable partition by bin into dst; each chunk's left part starts after the
@@ -257,17 +264,8 @@ private:
         std::vector<std::array<Bounds, 2>> parts(n);
         parallel_for(n, threads, [&](std::size_t k, unsigned) {
             const auto [begin, end] = chunk(t, k, n);
-            std::uint32_t l = left_at[k], r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
-            std::array<Box4, 2> box, cbox;  // left, right: Bounds::add's comparisons, on lanes
-            for (std::uint32_t i = begin; i < end; ++i) {
-                const Ref& ref = src[i];
-                const bool goes_left = below(i);
-                dst[goes_left ? l++ : r++] = ref;
-                box[!goes_left].extend(ref.lanes(ref.lo), ref.lanes(ref.hi));
-                const V4 c = ref.centroid_lanes();
-                cbox[!goes_left].extend(c, c);
-            }
-            parts[k] = {Bounds{box[0].aabb(), cbox[0].aabb()}, Bounds{box[1].aabb(), cbox[1].aabb()}};
+            const std::uint32_t r = t.begin + n_left + (begin - t.begin) - (left_at[k] - t.begin);
+            (void)partition_range(src, dst, begin, end, left_at[k], r, below, parts[k][0], parts[k][1]);
         }, 1);
         left = right = {};
         for (const auto& p : parts) left.add(p[0]), right.add(p[1]);
