@@ -27,6 +27,13 @@
 
 namespace rtc {
 
+// An instance's object ray as the box test leaves it: origin and direction
+// only, unwritten until an entry writes them (a Ray's member initializers
+// cost four stores per instance tested, entered or not).
+struct ObjectRayParts {
+    Vec3 origin, direction;
+};
+
 #if defined(__SSE2__)
 
 // A world ray held in lanes for many instance steps: each component broadcast.
@@ -85,8 +92,13 @@ struct ObjectRayLanes {
 
 // The entry distance of the transformed ray into `box`, or +inf: exactly
 // intersect_box(box, a.point(origin), safe_inverse(a.vector(direction)), tmin, tmax).
+// When the box is entered, `object` receives the transformed ray's origin and
+// direction (exactly a.ray()'s): taking them from here instead of
+// transforming again (the scalar a.ray(), two calls) saves about 60
+// instructions per instance entered; on a miss `object` is left alone.
 [[nodiscard, gnu::always_inline]] inline float intersect_instance_box(const Affine& a, const Aabb& box,
-                                                                     const LaneRay& r, float tmax) {
+                                                                     const LaneRay& r, float tmax,
+                                                                     ObjectRayParts& object) {
     const auto [o, d] = transform(a, r);
     // safe_inverse: 1 / d, and +-1e30 (the sign of the zero) where d == 0.
     const __m128 zero = _mm_cmpeq_ps(d, _mm_setzero_ps());
@@ -104,7 +116,10 @@ struct ObjectRayLanes {
     const __m128 tnear = _mm_max_ss(_mm_max_ss(_mm_set_ss(r.tmin), lo_z), _mm_max_ss(lo_y, lo));
     const __m128 tfar = _mm_min_ss(_mm_min_ss(_mm_set_ss(tmax), hi_z), _mm_min_ss(hi_y, hi));
     const float near = _mm_cvtss_f32(tnear);
-    return near <= _mm_cvtss_f32(tfar) * kSlabPad ? near : kInfinity;
+    if (!(near <= _mm_cvtss_f32(tfar) * kSlabPad)) return kInfinity;
+    store3(o, object.origin);
+    store3(d, object.direction);
+    return near;
 }
 
 #else
@@ -121,9 +136,11 @@ struct LaneRay {
 }
 
 [[nodiscard]] inline float intersect_instance_box(const Affine& a, const Aabb& box, const LaneRay& r,
-                                                  float tmax) {
-    return intersect_box(box, a.point(r.ray.origin), safe_inverse(a.vector(r.ray.direction)), r.ray.tmin,
-                         tmax);
+                                                  float tmax, ObjectRayParts& object) {
+    const Ray t = a.ray(r.ray);
+    const float near = intersect_box(box, t.origin, safe_inverse(t.direction), r.ray.tmin, tmax);
+    if (near != kInfinity) object.origin = t.origin, object.direction = t.direction;
+    return near;
 }
 
 #endif

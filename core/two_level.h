@@ -81,20 +81,19 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
             sink.on(Event::InstanceTransform);
             const Bvh& blas = scene.blases[inst.blas];
             const BvhEntry* leaf = kLaneInstances ? one_leaf(blas) : nullptr;
+            ObjectRayParts entered;
             if (leaf) {  // traverse()'s events and tests, in its order
                 if (Mode == TraversalMode::Closest && ray.tmin > tmax) continue;
                 sink.on(kBlasEvents.node_visit);
                 sink.add(kBlasEvents.box_test, 1);
-                const float entry = intersect_instance_box(inst.object_from_world, leaf->box, lanes, tmax);
+                const float entry =
+                    intersect_instance_box(inst.object_from_world, leaf->box, lanes, tmax, entered);
                 if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > tmax)) continue;
             }
-            // A BLAS to traverse gets its object ray on the lanes (the scalar
-            // transform's floats, see object_ray). The one-leaf path keeps
-            // the scalar one: with the lanes there, its misses spilled more
-            // (case 1 obb +0.9 %).
-            Ray object_ray = leaf ? inst.object_from_world.ray(ray)
-                                  : rtc::object_ray(inst.object_from_world, lanes, tmax);
-            object_ray.tmax = tmax;
+            // The object ray on the lanes (the scalar transform's floats, see
+            // object_ray); for a one-leaf BLAS the box test's own transform.
+            const Ray object_ray = leaf ? Ray{entered.origin, ray.tmin, entered.direction, tmax}
+                                        : rtc::object_ray(inst.object_from_world, lanes, tmax);
             // Inlined into both callers (the BLAS traversal and the one-leaf
             // path): as a call it cost case 1 ref 4 % more instructions.
             const auto on_blas_leaf = [&](std::uint32_t bfirst, std::uint32_t bcount,

@@ -1,7 +1,7 @@
 // The instance step on SIMD lanes (core/instance_box.h) against the scalar
 // path it replaces: transform the ray with Affine::point / vector, take
-// safe_inverse, test the box with intersect_box; and object_ray() against
-// Affine::ray. Results must be equal bit for bit, for ordinary rays and for
+// safe_inverse, test the box with intersect_box; and object_ray() and the box
+// test's own object ray against Affine::ray. Results must be equal bit for bit, for ordinary rays and for
 // the inputs where float rules bite: zero direction components of either sign
 // (the +-1e30 mapping), axis-aligned and degenerate transforms, rays starting
 // on a slab, infinite and NaN tmax.
@@ -31,7 +31,8 @@ struct Compare {
     int compared = 0, hits = 0;
     void operator()(const Affine& a, const Aabb& box, const Ray& r, float tmax) {
         const float want = scalar_path(a, box, r, tmax);
-        const float got = intersect_instance_box(a, box, LaneRay(r), tmax);
+        ObjectRayParts entered{r.origin, r.direction};  // left alone on a miss
+        const float got = intersect_instance_box(a, box, LaneRay(r), tmax, entered);
         // The object ray on the lanes against Affine::ray, every float's bits.
         // NaNs only as NaNs: where two NaNs meet in a sum (0 * inf in one
         // term, a NaN input in another) the result's sign is the operand
@@ -49,6 +50,11 @@ struct Compare {
             return out;
         };
         if (bits(got_ray) != bits(want_ray)) CHECK(bits(got_ray) == bits(want_ray));
+        // The box test's own transform, as the one-leaf path takes it on an
+        // entry; a miss leaves the ray alone.
+        const Ray& box_want = got != kInfinity ? want_ray : r;
+        const Ray box_ray{entered.origin, box_want.tmin, entered.direction, box_want.tmax};
+        if (bits(box_ray) != bits(box_want)) CHECK(bits(box_ray) == bits(box_want));
         ++compared;
         if (want != kInfinity) ++hits;
         if (std::bit_cast<std::uint32_t>(want) != std::bit_cast<std::uint32_t>(got)) {
