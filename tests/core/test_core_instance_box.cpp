@@ -1,10 +1,10 @@
 // The instance step on SIMD lanes (core/instance_box.h) against the scalar
 // path it replaces: transform the ray with Affine::point / vector, take
 // safe_inverse, test the box with intersect_box; and object_ray() and the box
-// test's own object ray against Affine::ray. Results must be equal bit for bit, for ordinary rays and for
-// the inputs where float rules bite: zero direction components of either sign
-// (the +-1e30 mapping), axis-aligned and degenerate transforms, rays starting
-// on a slab, infinite and NaN tmax.
+// test's own object ray against Affine::ray. Results must be equal bit for
+// bit, for ordinary rays and for the inputs where float rules bite: zero
+// direction components of either sign (the +-1e30 mapping), axis-aligned and
+// degenerate transforms, rays starting on a slab, infinite and NaN tmax.
 #include "core/instance_box.h"
 #include "core_test_util.h"
 
