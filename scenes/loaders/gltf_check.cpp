@@ -4,12 +4,12 @@
 #include "scenes/loaders/gltf_check.h"
 
 #include "core/input_error.h"
+#include "scenes/loaders/file_bytes.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <fstream>
-#include <iterator>
 
 namespace rtc {
 
@@ -19,10 +19,10 @@ namespace {
     throw InputError(file + ": JSON key " + key + ": " + problem);
 }
 
-std::string read_json_text(const std::filesystem::path& path, const std::string& file, bool binary) {
+// A .glb file's JSON chunk alone (its binary buffers are not read).
+std::string read_glb_json(const std::filesystem::path& path, const std::string& file) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(file + ": cannot open file");
-    if (!binary) return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     std::uint32_t header[5] = {};  // magic, version, length; chunk 0's length and type
     if (!in.read(reinterpret_cast<char*>(header), sizeof header))
         throw InputError(file + ": byte 12: file truncated in the .glb header");
@@ -41,12 +41,13 @@ std::string read_json_text(const std::filesystem::path& path, const std::string&
 // An index into the top-level array `what`: a non-negative integer below its size.
 void check_index(const nlohmann::json& v, const nlohmann::json& root, const char* what, const std::string& file,
                  const std::string& key) {
-    if (!v.is_number_integer() || v.get<std::int64_t>() < 0) fail_key(file, key, "expected a non-negative integer");
+    const std::int64_t index = v.is_number_integer() ? v.get<std::int64_t>() : -1;
+    if (index < 0) fail_key(file, key, "expected a non-negative integer");
     const auto it = root.find(what);
     const std::size_t n = it != root.end() && it->is_array() ? it->size() : 0;
-    if (static_cast<std::uint64_t>(v.get<std::int64_t>()) >= n)
-        fail_key(file, key, "names " + std::string(what) + " " + std::to_string(v.get<std::int64_t>()) +
-                                ", the file has " + std::to_string(n));
+    if (static_cast<std::uint64_t>(index) >= n)
+        fail_key(file, key, "names " + std::string(what) + " " + std::to_string(index) + ", the file has " +
+                                std::to_string(n));
 }
 
 }  // namespace
@@ -54,7 +55,8 @@ void check_index(const nlohmann::json& v, const nlohmann::json& root, const char
 void check_gltf_json(const std::filesystem::path& path, const std::string& file, bool binary) {
     nlohmann::json root;
     try {
-        root = nlohmann::json::parse(read_json_text(path, file, binary));
+        // A .gltf file's JSON is the whole file.
+        root = binary ? nlohmann::json::parse(read_glb_json(path, file)) : nlohmann::json::parse(read_file_bytes(path));
     } catch (const nlohmann::json::parse_error& e) {
         throw InputError(file + ": byte " + std::to_string(e.byte + (binary ? 20 : 0)) + ": invalid JSON");
     } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double (found by fuzz_gltf)
