@@ -16,9 +16,8 @@
 
 #include "core/affine.h"
 #include "core/aabb.h"
+#include "core/box_lanes.h"
 #include "core/ray.h"
-
-#include <cstring>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -46,15 +45,6 @@ struct LaneRay {
           tmin(r.tmin) {}
 };
 
-// Loads three floats into lanes 0-2 (lane 3 is zero) without reading past
-// them. x and y go through memcpy: a Vec3 is only 4-byte aligned, and
-// _mm_load_sd dereferences a double (misaligned: UB, and UBSan says so).
-[[gnu::always_inline]] inline __m128 load3(const Vec3& v) {
-    double xy;
-    std::memcpy(&xy, &v.x, sizeof xy);
-    return _mm_movelh_ps(_mm_castpd_ps(_mm_set_sd(xy)), _mm_load_ss(&v.z));
-}
-
 // The ray's origin and direction in object space, in lanes 0-2: exactly
 // a.point(origin) and a.vector(direction).
 struct ObjectRayLanes {
@@ -67,13 +57,6 @@ struct ObjectRayLanes {
         load3(a.translation));
     const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, r.dx), _mm_mul_ps(c1, r.dy)), _mm_mul_ps(c2, r.dz));
     return {o, d};
-}
-
-// Stores lanes 0-2 into a Vec3 (only 4-byte aligned: x and y through memcpy).
-[[gnu::always_inline]] inline void store3(__m128 x, Vec3& v) {
-    const double xy = _mm_cvtsd_f64(_mm_castps_pd(x));
-    std::memcpy(&v.x, &xy, sizeof xy);
-    v.z = _mm_cvtss_f32(_mm_movehl_ps(x, x));
 }
 
 // The object-space ray, exactly a.ray(ray) with tmax = `tmax`, on the lanes:
@@ -100,23 +83,8 @@ struct ObjectRayLanes {
                                                                      const LaneRay& r, float tmax,
                                                                      ObjectRayParts& object) {
     const auto [o, d] = transform(a, r);
-    // safe_inverse: 1 / d, and +-1e30 (the sign of the zero) where d == 0.
-    const __m128 zero = _mm_cmpeq_ps(d, _mm_setzero_ps());
-    const __m128 sign = _mm_and_ps(d, _mm_set1_ps(-0.0f));
-    const __m128 big = _mm_or_ps(sign, _mm_set1_ps(1e30f));
-    const __m128 inv = _mm_or_ps(_mm_and_ps(zero, big), _mm_andnot_ps(zero, _mm_div_ps(_mm_set1_ps(1.0f), d)));
-    const __m128 t0 = _mm_mul_ps(_mm_sub_ps(load3(box.lo), o), inv);
-    const __m128 t1 = _mm_mul_ps(_mm_sub_ps(load3(box.hi), o), inv);
-    // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
-    const __m128 lo = _mm_min_ps(t1, t0), hi = _mm_max_ps(t1, t0);  // per axis: min(t0, t1), max(t0, t1)
-    const __m128 lo_y = _mm_shuffle_ps(lo, lo, _MM_SHUFFLE(1, 1, 1, 1));
-    const __m128 lo_z = _mm_movehl_ps(lo, lo), hi_y = _mm_shuffle_ps(hi, hi, _MM_SHUFFLE(1, 1, 1, 1));
-    const __m128 hi_z = _mm_movehl_ps(hi, hi);
-    // tnear = max(max(lo.x, lo.y), max(lo.z, tmin)); tfar = min(min(hi.x, hi.y), min(hi.z, tmax)).
-    const __m128 tnear = _mm_max_ss(_mm_max_ss(_mm_set_ss(r.tmin), lo_z), _mm_max_ss(lo_y, lo));
-    const __m128 tfar = _mm_min_ss(_mm_min_ss(_mm_set_ss(tmax), hi_z), _mm_min_ss(hi_y, hi));
-    const float near = _mm_cvtss_f32(tnear);
-    if (!(near <= _mm_cvtss_f32(tfar) * kSlabPad)) return kInfinity;
+    const float near = intersect_box_lanes(box, o, safe_inverse_lanes(d), r.tmin, tmax);
+    if (near == kInfinity) return kInfinity;
     store3(o, object.origin);
     store3(d, object.direction);
     return near;

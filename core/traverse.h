@@ -11,6 +11,7 @@
 //   child box (which events, TLAS or BLAS, is the Level parameter).
 #pragma once
 
+#include "core/box_lanes.h"
 #include "core/bvh.h"
 #include "core/events.h"
 
@@ -52,7 +53,27 @@ struct BoxRay {
 #endif
 };
 
+// tmax as the box tests use it: broadcast to the lanes once per change (a
+// hit), not at every node.
 #if defined(__SSE2__)
+using LaneTmax = __m128;
+[[nodiscard, gnu::always_inline]] inline LaneTmax lane_tmax(float t) { return _mm_set1_ps(t); }
+#else
+using LaneTmax = float;
+[[nodiscard]] inline LaneTmax lane_tmax(float t) { return t; }
+#endif
+
+#if defined(__SSE2__)
+// Constants of the lane box test, in memory where the compiler cannot see
+// their values: it reads them as operands of the instructions that use them.
+// As known values they were rebuilt in a register at every node (a load and a
+// shuffle each: every register holds the ray or the box's products).
+struct alignas(16) LaneConstants {
+    float slab_pad[4];
+    float infinity[4];
+};
+extern const LaneConstants kLaneConstants;
+
 // The four children of one lane block: the hit mask (bit i for lane i) and
 // their entry distances in tnear[0, 4).
 [[nodiscard, gnu::always_inline]] inline unsigned intersect_block(const BvhLaneBlock& b, const BoxRay& r,
@@ -70,8 +91,8 @@ struct BoxRay {
     const __m128 far = mn(mn(mx(tx0, tx1), mx(ty0, ty1)), mn(mx(tz0, tz1), vtmax));
     _mm_storeu_ps(tnear, near);
     // A hit: near <= far * pad, and near finite (intersect_box's +inf is a miss).
-    const __m128 hit = _mm_and_ps(_mm_cmple_ps(near, _mm_mul_ps(far, _mm_set1_ps(kSlabPad))),
-                                  _mm_cmpneq_ps(near, _mm_set1_ps(kInfinity)));
+    const __m128 pad = _mm_load_ps(kLaneConstants.slab_pad), inf = _mm_load_ps(kLaneConstants.infinity);
+    const __m128 hit = _mm_and_ps(_mm_cmple_ps(near, _mm_mul_ps(far, pad)), _mm_cmpneq_ps(near, inf));
     return static_cast<unsigned>(_mm_movemask_ps(hit));
 }
 #endif
@@ -83,9 +104,8 @@ struct BoxRay {
 // zeros resolve alike), four children per SSE instruction.
 [[nodiscard, gnu::always_inline]] inline unsigned intersect_children(const BvhLaneBlock* block,
                                                                      std::uint32_t n, const BoxRay& r,
-                                                                     float tmax, float* tnear) {
+                                                                     LaneTmax vtmax, float* tnear) {
 #if defined(__SSE2__)
-    const __m128 vtmax = _mm_set1_ps(tmax);
     // Nodes of one to four children (the default width) in one block, no loop;
     // an empty root (a BVH over no primitives) has no block to read.
     if (n - 1u < 4u) return intersect_block(*block, r, vtmax, tnear) & ((1u << n) - 1u);
@@ -99,7 +119,7 @@ struct BoxRay {
         const BvhLaneBlock& b = block[i / 4];
         const std::uint32_t l = i % 4;
         const Aabb box{{b.lo_x[l], b.lo_y[l], b.lo_z[l]}, {b.hi_x[l], b.hi_y[l], b.hi_z[l]}};
-        tnear[i] = intersect_box(box, r.origin, r.inv_dir, r.tmin, tmax);
+        tnear[i] = intersect_box(box, r.origin, r.inv_dir, r.tmin, vtmax);
         if (tnear[i] != kInfinity) mask |= 1u << i;
     }
     return mask;
@@ -117,7 +137,7 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
         sink.on(Level.node_visit);
         sink.add(Level.box_test, 1);
         const BvhEntry& leaf = entries[bvh.root.first];
-        const float t = intersect_box(leaf.box, origin, inv_dir, tmin, tmax);
+        const float t = intersect_lone_box(leaf.box, origin, inv_dir, tmin, tmax);
         if (t == kInfinity || (Mode == TraversalMode::Closest && t > tmax)) return kInfinity;
         const float hit = on_leaf(leaf.first, leaf.count, tmax);
         return hit < kInfinity ? hit : kInfinity;
@@ -144,6 +164,7 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
     int top = 0;
     float nearest = kInfinity;
     const BoxRay box_ray(origin, inv_dir, tmin);
+    LaneTmax vtmax = lane_tmax(tmax);
     // At hand: the root node first (its blocks come first), then each node's
     // nearest hit child, else the next entry popped.
     for (;;) {
@@ -153,7 +174,7 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
             sink.add(Level.box_test, n);
             const BvhLaneBlock* block = bvh.lanes.data() + first;
             float tnear[8];
-            unsigned hits = intersect_children(block, n, box_ray, tmax, tnear);
+            unsigned hits = intersect_children(block, n, box_ray, vtmax, tnear);
             // The nearest hit child goes next (of equal ones, the last); the
             // others go onto the stack sorted far to near by insertion. Stack
             // and order are those of pushing every hit child and popping the
@@ -190,7 +211,10 @@ float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tm
         } else {
             const float t = on_leaf(first, count, tmax);
             if (t < nearest) nearest = t;
-            if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
+            if (Mode == TraversalMode::Closest && t < tmax) {
+                tmax = t;
+                vtmax = lane_tmax(t);
+            }
             if (Mode == TraversalMode::AnyHit && t < kInfinity) return t;
         }
         // Pop, the word and tnear read apart (copying the 12-byte entry out

@@ -68,7 +68,7 @@ namespace detail {
 template <TraversalMode Mode, bool kLaneInstances, class Sink, class PrimFn, class BlasFn>
 float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim,
                       BlasFn&& traverse_blas) {
-    const Vec3 inv_dir = safe_inverse(ray.direction);
+    const Vec3 inv_dir = safe_inverse_fast(ray.direction);
     const LaneRay lanes(ray);
     // Inlined into the TLAS traversal: as a call, every instance leaf cost a
     // spill and reload of the traversal's broadcast ray registers.
@@ -150,7 +150,7 @@ float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
         scene, ray, sink, on_prim,
         [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) __attribute__((noinline)) {
             return traverse<Mode, kBlasEvents>(scene.blases[blas], object_ray.origin,
-                                               safe_inverse(object_ray.direction), object_ray.tmin,
+                                               safe_inverse_fast(object_ray.direction), object_ray.tmin,
                                                tmax, sink, on_leaf);
         });
 }
