@@ -9,6 +9,10 @@
 #include <array>
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace rtc {
 
 // Discards everything; used when only the hits matter.
@@ -22,6 +26,19 @@ struct NullSink {
 // on the stack while the ray is traced.
 struct RayCounts {
     std::array<std::uint32_t, kEventCount> n{};
+
+    // Zeroes the counts with vector stores: a new RayCounts{} per pixel
+    // compiled to `rep stos`, 14 instructions to callgrind and slow to start.
+    void clear() {
+#if defined(__SSE2__)
+        constexpr std::size_t kVectors = sizeof n / 16;
+        for (std::size_t v = 0; v < kVectors; ++v)
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(n.data()) + v, _mm_setzero_si128());
+        for (std::size_t i = kVectors * 4; i < kEventCount; ++i) n[i] = 0;
+#else
+        n.fill(0);
+#endif
+    }
 
     [[nodiscard]] std::uint32_t operator[](Event e) const { return n[static_cast<std::size_t>(e)]; }
     RayCounts& operator+=(const RayCounts& o) {

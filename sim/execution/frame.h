@@ -170,9 +170,10 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         };
         if (frame.from_camera) {
             const auto py = static_cast<std::uint32_t>(tile);
+            CountingSink sink;
             for (std::uint32_t px = 0; px < static_cast<std::uint32_t>(out.width); ++px) {
                 const std::size_t pixel = static_cast<std::size_t>(py) * out.width + px;
-                CountingSink sink;
+                sink.ray.clear();
                 Vec3 sum{0.0f};
                 for (std::uint32_t s = 0; s < frame.path.spp; ++s)
                     sum += trace_path(cam, px, py, s, frame.path,
@@ -188,8 +189,9 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         } else {
             const std::size_t begin = tile * kRaysPerTile;
             const std::size_t end = std::min(frame.rays.size(), begin + kRaysPerTile);
+            CountingSink sink;
             for (std::size_t i = begin; i < end; ++i) {
-                CountingSink sink;
+                sink.ray.clear();
                 trace(frame.rays[i], sink);
                 out.ray_counts[i] = sink.ray;
             }

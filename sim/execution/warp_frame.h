@@ -68,8 +68,9 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         t.warp.resize(presets);
         TraceScratch& sc = scratch[thread];
         std::vector<WaveWork>& wv = waves[thread];
+        CountingSink sink;
         const auto trace_lane = [&](const Ray& ray, std::size_t depth, std::uint32_t pixel, RayCounts& into) {
-            CountingSink sink;
+            sink.ray.clear();
             const TraceHit hit = tracer(ray, sink, sc);
             into += sink.ray;
             ++t.rays_traced;

@@ -32,10 +32,13 @@ public:
         return std::visit(
             [&](const auto& prims) {
                 using Prim = typename std::decay_t<decltype(prims)>::value_type;
+                // Spans made once per frame: from the vectors, per ray, each
+                // cost a size computation (a division by the element size).
                 const std::span<const Prim> p(prims);
+                const std::span<const Triangle> triangles(g.triangles);
                 return run_frame(workload, frame,
                                  [&](const Ray& ray, CountingSink& sink, TraceScratch& scratch) {
-                                     LeafPrograms<Prim, CountingSink> programs(p, g.triangles, options,
+                                     LeafPrograms<Prim, CountingSink> programs(p, triangles, options,
                                                                                scratch, sink);
                                      return Impl::template trace<TraversalMode::Closest>(s_, programs, ray);
                                  });
