@@ -9,8 +9,6 @@
 #include "core/aabb.h"
 #include "core/ray.h"
 
-#include <glm/vec2.hpp>
-
 #include <cstdint>
 
 namespace rtc {
@@ -47,20 +45,11 @@ struct CameraFrame {
     return {f.origin, 0.0f, glm::normalize(f.corner + x * f.right + y * f.down), kInfinity};
 }
 
-// Where sample `sample` of `spp` (spp > 1) falls in pixel (px, py), in [0, 1)
-// pixels: stratified and jittered by the counter-based RNG (sim/rng.h).
-[[nodiscard]] glm::vec2 pixel_jitter(std::uint32_t px, std::uint32_t py, std::uint32_t sample,
-                                     std::uint32_t spp, std::uint32_t seed);
-
 // Primary ray of sample `sample` of `spp` in pixel (px, py). With spp == 1 the
-// ray passes through the pixel centre; otherwise it is jittered inside the
-// pixel (pixel_jitter). Inline: as a call, a cheap ray's set-up cost about
-// ten more instructions.
-[[nodiscard]] inline Ray primary_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
-                                     std::uint32_t sample, std::uint32_t spp, std::uint32_t seed) {
-    const glm::vec2 o = spp > 1 ? pixel_jitter(px, py, sample, spp, seed) : glm::vec2(0.5f, 0.5f);
-    return frame_ray(frame, static_cast<float>(px) + o.x, static_cast<float>(py) + o.y);
-}
+// ray passes through the pixel centre; otherwise it is stratified-jittered
+// inside the pixel by the counter-based RNG (sim/rng.h).
+[[nodiscard]] Ray primary_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
+                              std::uint32_t sample, std::uint32_t spp, std::uint32_t seed);
 [[nodiscard]] Ray primary_ray(const Camera& camera, std::uint32_t px, std::uint32_t py,
                               std::uint32_t sample, std::uint32_t spp, std::uint32_t seed);
 
