@@ -5,6 +5,30 @@
 
 namespace rtc {
 
+namespace {
+
+// Ones on the diagonal and zeros (of either sign) elsewhere, the translation zero.
+bool is_identity(const Affine& a) {
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (a.linear[c][r] != (c == r ? 1.0f : 0.0f)) return false;
+    return a.translation == Vec3(0.0f);
+}
+
+// See TwoLevel::lone_identity.
+bool has_lone_identity(const TwoLevel& s) {
+    const Bvh& t = s.tlas;
+    if (t.root.count != (BvhEntry::kInnerBit | 1u) || t.entries[t.root.first].is_inner()) return false;
+    const BvhEntry& leaf = t.entries[t.root.first];
+    if (leaf.count != 1) return false;
+    const Instance& inst = s.instances[t.prim_ids[leaf.first]];
+    const Bvh& blas = s.blases[inst.blas];
+    return is_identity(inst.object_from_world) && (blas.root.count & BvhEntry::kInnerBit) &&
+           !detail::one_leaf(blas);
+}
+
+}  // namespace
+
 Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world_from_object) {
     const auto inverse = world_from_object.inverse();
     if (!inverse)
@@ -29,6 +53,7 @@ TwoLevel build_two_level(std::vector<Bvh> blases, std::vector<Instance> instance
     }
     TwoLevel out{std::move(blases), std::move(instances), {}};
     out.tlas = build_bvh(boxes, tlas_options);
+    out.lone_identity = has_lone_identity(out);
     return out;
 }
 

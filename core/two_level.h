@@ -12,6 +12,7 @@
 #include "core/sinks.h"
 #include "core/traverse.h"
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -29,6 +30,13 @@ struct TwoLevel {
     std::vector<Bvh> blases;
     std::vector<Instance> instances;
     Bvh tlas;  // over the world-space boxes of the instances' BLAS roots
+    // Set by build_two_level: the TLAS root is one leaf over one instance
+    // whose object_from_world is the identity (ones on the diagonal, zeros
+    // of either sign elsewhere) and whose BLAS has inner nodes, the shape of
+    // the reference method's scene. trace_two_level then skips the instance
+    // transform for rays it maps to themselves bit for bit (see
+    // passes_identity), counting the same events.
+    bool lone_identity = false;
 
     [[nodiscard]] std::size_t memory_bytes() const;
 };
@@ -53,12 +61,78 @@ struct PrimitiveQuery {
     float tmax;
 };
 
+// True when the identity transform (object_from_world of an instance that
+// TwoLevel::lone_identity names) maps `ray` to itself bit for bit. Per
+// component it computes ((1 * x + z1 * y) + z2 * z) + z3 with signed zeros zi
+// (core/instance_box.h's order): exact for finite components, except that -0
+// plus a +0 is +0. So: every origin and direction component finite and none
+// -0 (camera and bounce rays nearly always are).
+[[nodiscard, gnu::always_inline]] inline bool passes_identity(const Ray& ray) {
+#if defined(__SSE2__)
+    const __m128 o = load3(ray.origin), d = load3(ray.direction);
+    const __m128 zero = _mm_setzero_ps();
+    // x - x is 0 for finite x and NaN for an infinity or NaN.
+    const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(_mm_sub_ps(o, o), zero), _mm_cmpeq_ps(_mm_sub_ps(d, d), zero));
+    const __m128i minus_zero = _mm_set1_epi32(static_cast<int>(0x80000000u));
+    const __m128i neg0 = _mm_or_si128(_mm_cmpeq_epi32(_mm_castps_si128(o), minus_zero),
+                                      _mm_cmpeq_epi32(_mm_castps_si128(d), minus_zero));
+    return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(neg0), finite)) == 0xF;
+#else
+    const auto ok = [](float x) { return std::isfinite(x) && !(x == 0.0f && std::signbit(x)); };
+    return ok(ray.origin.x) && ok(ray.origin.y) && ok(ray.origin.z) && ok(ray.direction.x) &&
+           ok(ray.direction.y) && ok(ray.direction.z);
+#endif
+}
+
 namespace detail {
 
 // The root's one child when it is a leaf (the masquerade's unit-box BLAS).
 [[nodiscard]] inline const BvhEntry* one_leaf(const Bvh& b) {
     const bool one = b.root.count == (BvhEntry::kInnerBit | 1u) && !b.entries[b.root.first].is_inner();
     return one ? &b.entries[b.root.first] : nullptr;
+}
+
+// A BLAS leaf's primitives handed to `on_prim` one by one, nearest accepted t
+// first. Inlined into every caller (the BLAS traversal and the one-leaf path):
+// as a call it cost case 1 ref 4 % more instructions.
+template <TraversalMode Mode, class PrimFn>
+[[gnu::always_inline]] inline auto blas_leaf(const Instance& inst, std::uint32_t index, const Bvh& blas,
+                                             const Ray& ray, const Ray& object_ray, PrimFn& on_prim) {
+    return [&inst, index, &blas, &ray, &object_ray, &on_prim](std::uint32_t first, std::uint32_t count,
+                                                              float tmax) __attribute__((always_inline)) {
+        float best = kInfinity;
+        for (std::uint32_t j = 0; j < count; ++j) {
+            const PrimitiveQuery q{inst, index, blas.prim_ids[first + j], ray, object_ray, tmax};
+            const float t = on_prim(q);
+            if (t < best) best = t;
+            if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
+            if (Mode == TraversalMode::AnyHit && t < kInfinity) break;
+        }
+        return best;
+    };
+}
+
+// trace_instances() for a TwoLevel::lone_identity scene and a ray that
+// passes_identity(): the same events, tests and floats, in the same order
+// (traverse()'s one-leaf root, the instance step, the BLAS traversal), with
+// the world ray as the object ray. One traversal call instead of two, no
+// transform, one reciprocal of the direction.
+template <TraversalMode Mode, class Sink, class PrimFn>
+float trace_lone_identity(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn& on_prim) {
+    if (Mode == TraversalMode::Closest && ray.tmin > ray.tmax) return kInfinity;
+    sink.on(kTlasEvents.node_visit);
+    sink.add(kTlasEvents.box_test, 1);
+    const Vec3 inv_dir = safe_inverse_fast(ray.direction);
+    const BvhEntry& leaf = scene.tlas.entries[scene.tlas.root.first];
+    const float entry = intersect_lone_box(leaf.box, ray.origin, inv_dir, ray.tmin, ray.tmax);
+    if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > ray.tmax)) return kInfinity;
+    const std::uint32_t index = scene.tlas.prim_ids[leaf.first];
+    const Instance& inst = scene.instances[index];
+    sink.on(Event::InstanceTransform);
+    const Bvh& blas = scene.blases[inst.blas];
+    const auto on_blas_leaf = blas_leaf<Mode>(inst, index, blas, ray, ray, on_prim);
+    const float t = traverse<Mode, kBlasEvents>(blas, ray.origin, inv_dir, ray.tmin, ray.tmax, sink, on_blas_leaf);
+    return t < kInfinity ? t : kInfinity;
 }
 
 // kLaneInstances: BLASes are traversed by traverse(), so an instance over a
@@ -94,21 +168,7 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
             // object_ray); for a one-leaf BLAS the box test's own transform.
             const Ray object_ray = leaf ? Ray{entered.origin, ray.tmin, entered.direction, tmax}
                                         : rtc::object_ray(inst.object_from_world, lanes, tmax);
-            // Inlined into both callers (the BLAS traversal and the one-leaf
-            // path): as a call it cost case 1 ref 4 % more instructions.
-            const auto on_blas_leaf = [&](std::uint32_t bfirst, std::uint32_t bcount,
-                                          float btmax) __attribute__((always_inline)) {
-                float best = kInfinity;
-                for (std::uint32_t j = 0; j < bcount; ++j) {
-                    const PrimitiveQuery q{inst, index, blas.prim_ids[bfirst + j], ray, object_ray,
-                                           btmax};
-                    const float t = on_prim(q);
-                    if (t < best) best = t;
-                    if (Mode == TraversalMode::Closest && t < btmax) btmax = t;
-                    if (Mode == TraversalMode::AnyHit && t < kInfinity) break;
-                }
-                return best;
-            };
+            const auto on_blas_leaf = blas_leaf<Mode>(inst, index, blas, ray, object_ray, on_prim);
             float t = kInfinity;
             if (leaf) {
                 const float hit = on_blas_leaf(leaf->first, leaf->count, tmax);
@@ -144,6 +204,8 @@ float trace_two_level_with(const TwoLevel& scene, const Ray& ray, Sink& sink, Pr
 
 template <TraversalMode Mode, class Sink, class PrimFn>
 float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+    if (scene.lone_identity && passes_identity(ray))
+        return detail::trace_lone_identity<Mode>(scene, ray, sink, on_prim);
     // The BLAS traversal stays a function of its own: inlined into the TLAS
     // leaf (inlined itself) it cost case 1 ref 7 % more instructions.
     return detail::trace_instances<Mode, true>(

@@ -5,8 +5,11 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+#include <vector>
 
 using namespace rtc;
 using rtc::test::Rng;
@@ -127,4 +130,72 @@ TEST_CASE("two-level: singular transforms and dangling BLAS indices are rejected
     CHECK(trace_two_level<TraversalMode::Closest>(none, ray, sink, [](const PrimitiveQuery&) {
               return 0.0f;
           }) == kInfinity);
+}
+
+TEST_CASE("two-level: the lone identity instance's shortcut equals the instance step bit for bit") {
+    // The reference method's shape: one identity instance over a BLAS with
+    // inner nodes. trace_two_level skips the transform for rays that
+    // passes_identity(); the general path (lone_identity cleared) is the
+    // reference: every program call (primitive, object ray bits, tmax), every
+    // event count and the result must agree.
+    Rng rng(7);
+    const std::vector<Tri> tris = rtc::test::random_triangles(rng, 300, 0.2f);
+    std::vector<Aabb> boxes;
+    for (const Tri& t : tris) boxes.push_back(t.box());
+    std::vector<Bvh> blases{build_bvh(boxes)};
+    // make_instance inverts the identity: its inverse may hold -0 entries.
+    Affine minus_zero;
+    minus_zero.linear[0][1] = -0.0f, minus_zero.linear[2][0] = -0.0f, minus_zero.translation.y = -0.0f;
+    for (const Affine& a : {Affine{}, minus_zero}) {
+        const TwoLevel fast = build_two_level(blases, {make_instance(0, 3, a)}, BuildOptions{});
+        REQUIRE(fast.lone_identity);
+        TwoLevel general = fast;
+        general.lone_identity = false;
+        const auto run = [&](const TwoLevel& scene, const Ray& ray, CountingSink& sink,
+                             std::vector<std::array<std::uint32_t, 8>>& calls) {
+            return trace_two_level<TraversalMode::Closest>(scene, ray, sink, [&](const PrimitiveQuery& q) {
+                std::array<std::uint32_t, 8> c{q.prim};
+                std::memcpy(&c[1], &q.object_ray.origin, 12);
+                std::memcpy(&c[4], &q.object_ray.direction, 12);
+                std::memcpy(&c[7], &q.tmax, 4);
+                calls.push_back(c);
+                Ray obj = q.object_ray;
+                obj.tmax = q.tmax;
+                const auto t = rtc::test::hit_triangle(tris[q.prim], obj);
+                return t ? *t : kInfinity;
+            });
+        };
+        std::vector<Ray> rays;
+        for (int r = 0; r < 3000; ++r) rays.push_back(rtc::test::random_ray(rng));
+        // Zeros of either sign, infinities and NaN in origin and direction.
+        const float specials[] = {0.0f, -0.0f, kInfinity, -kInfinity, std::nanf("")};
+        for (int r = 0; r < 3000; ++r) {
+            Ray ray = rtc::test::random_ray(rng);
+            float* f[] = {&ray.origin.x, &ray.origin.y, &ray.origin.z,
+                          &ray.direction.x, &ray.direction.y, &ray.direction.z};
+            *f[r % 6] = specials[(r / 6) % 5];
+            if (r % 3 == 0) *f[(r / 30) % 6] = specials[(r / 7) % 5];
+            rays.push_back(ray);
+        }
+        int shortcut = 0, hits = 0;
+        for (const Ray& ray : rays) {
+            CountingSink a, b;
+            std::vector<std::array<std::uint32_t, 8>> ca, cb;
+            const float ta = run(fast, ray, a, ca), tb = run(general, ray, b, cb);
+            shortcut += passes_identity(ray);
+            hits += ta < kInfinity;
+            CHECK(std::memcmp(&ta, &tb, sizeof ta) == 0);
+            CHECK(a.ray.n == b.ray.n);
+            CHECK(ca == cb);
+        }
+        CHECK(shortcut >= 3000);
+        CHECK(shortcut < static_cast<int>(rays.size()) - 1000);
+        CHECK(hits > 300);
+    }
+    // Not the shape: two instances, or a transform that is not the identity.
+    std::vector<Bvh> two{blases[0], blases[0]};
+    CHECK_FALSE(build_two_level(two, {make_instance(0, 0, Affine{}), make_instance(1, 1, Affine{})},
+                                BuildOptions{}).lone_identity);
+    CHECK_FALSE(build_two_level(blases, {make_instance(0, 0, Affine::translate({0, 0, 1e-7f}))},
+                                BuildOptions{}).lone_identity);
 }
