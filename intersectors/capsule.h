@@ -58,9 +58,9 @@ template <class Sink>
     // ray line's squared distance to the centre times |d|^2 is
     // |oc|^2 |d|^2 - (oc.d)^2; the capsule lies within L/2 + r of the centre,
     // and (L/2 + r)^2 <= 2 (L^2/4 + r^2) avoids the square root of L^2.
+    const DVec3 d(ray.direction), oc = DVec3(ray.origin) - c;
+    const double dd = glm::dot(d, d), od = glm::dot(oc, d);
     {
-        const DVec3 d(ray.direction), oc = DVec3(ray.origin) - c;
-        const double dd = glm::dot(d, d), od = glm::dot(oc, d);
         const double reach2 = 2.0 * (0.25 * len2 + r * r);
         const double oo = glm::dot(oc, oc);
         if (!(dd > 0.0) || !(oo * dd - od * od <= reach2 * dd)) return std::nullopt;
@@ -77,7 +77,7 @@ template <class Sink>
         if (nn > 1e-6 * dd * len2 && on * on > nn * (r * r * (1.0 + 2e-6) + 1e-16 * oo))
             return std::nullopt;
     }
-    const LocalRay lr = local_ray(ray, c);
+    const LocalRay lr = local_ray(d, oc, dd, od);  // local_ray(ray, c) without recomputing its parts
 
     Span span = hull(sphere_span(lr, a, r, 1), sphere_span(lr, -a, r, 2));
     DVec3 w(0.0);

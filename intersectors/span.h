@@ -36,12 +36,17 @@ struct LocalRay {
     double t0;
 };
 
+// From its parts, for a caller that has them already: d, oc = origin - c,
+// dd = d.d and od = oc.d.
+[[nodiscard]] inline LocalRay local_ray(const DVec3& d, const DVec3& oc, double dd, double od) {
+    const double t0 = dd > 0.0 ? -od / dd : 0.0;
+    return {oc + t0 * d, d, dd, t0};
+}
+
 [[nodiscard]] inline LocalRay local_ray(const Ray& ray, const DVec3& c) {
     const DVec3 d(ray.direction);
     const DVec3 oc = DVec3(ray.origin) - c;
-    const double dd = glm::dot(d, d);
-    const double t0 = dd > 0.0 ? -glm::dot(oc, d) / dd : 0.0;
-    return {oc + t0 * d, d, dd, t0};
+    return local_ray(d, oc, glm::dot(d, d), glm::dot(oc, d));
 }
 
 // A closed interval [lo, hi] of the local parameter s; empty when lo > hi.

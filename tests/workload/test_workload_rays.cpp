@@ -11,6 +11,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <set>
 
 using namespace rtc;
@@ -143,6 +145,31 @@ TEST_CASE("workload camera: jittered samples stay in their pixel and are repeata
     }
     CHECK(any_off_centre);
     CHECK(primary_ray(c, 1, 2, 3, 16, 5).direction != primary_ray(c, 1, 2, 3, 16, 6).direction);
+}
+
+TEST_CASE("workload camera: frame_ray on lanes equals the glm reference bit for bit") {
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<float> u(-3.0f, 3.0f), px(0.0f, 4000.0f);
+    const auto same = [](const Vec3& a, const Vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    int checked = 0;
+    for (int i = 0; i < 20000; ++i) {
+        CameraFrame f{{u(gen), u(gen), u(gen)}, {u(gen), u(gen), u(gen)}, Vec3(u(gen)) * 1e-3f,
+                      {u(gen) * 1e-3f, u(gen) * 1e-3f, u(gen) * 1e-3f}};
+        if (i % 5 == 0) f.corner.x = 0.0f, f.right.x = -0.0f;  // signed zeros
+        if (i % 7 == 0) f.down = Vec3(0.0f);
+        const float x = i % 11 == 0 ? 0.0f : px(gen), y = px(gen);
+        const Ray a = frame_ray(f, x, y), b = frame_ray_reference(f, x, y);
+        CHECK(same(a.origin, b.origin));
+        CHECK(same(a.direction, b.direction));
+        CHECK(a.tmin == b.tmin);
+        CHECK(a.tmax == b.tmax);
+        ++checked;
+    }
+    // A zero direction normalizes to NaN either way (not the same NaN bits).
+    const CameraFrame zero{Vec3(1.0f), Vec3(0.0f), Vec3(0.0f), Vec3(0.0f)};
+    CHECK(std::isnan(frame_ray(zero, 1.0f, 1.0f).direction.x));
+    CHECK(std::isnan(frame_ray_reference(zero, 1.0f, 1.0f).direction.x));
+    CHECK(checked == 20000);
 }
 
 TEST_CASE("workload camera: auto_frame keeps every box corner in the image") {
