@@ -96,9 +96,9 @@ namespace detail {
 // first. Inlined into every caller (the BLAS traversal and the one-leaf path):
 // as a call it cost case 1 ref 4 % more instructions.
 template <TraversalMode Mode, class PrimFn>
-[[gnu::always_inline]] inline auto blas_leaf(const Instance& inst, std::uint32_t index, const Bvh& blas,
+[[gnu::always_inline]] inline auto blas_leaf(const Instance& inst, const std::uint32_t& index, const Bvh& blas,
                                              const Ray& ray, const Ray& object_ray, PrimFn& on_prim) {
-    return [&inst, index, &blas, &ray, &object_ray, &on_prim](std::uint32_t first, std::uint32_t count,
+    return [&inst, &index, &blas, &ray, &object_ray, &on_prim](std::uint32_t first, std::uint32_t count,
                                                               float tmax) __attribute__((always_inline)) {
         float best = kInfinity;
         for (std::uint32_t j = 0; j < count; ++j) {

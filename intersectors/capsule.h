@@ -45,6 +45,37 @@ struct Capsule {
     return segment_obb(c.p0, c.p1, r, r);
 }
 
+namespace detail {
+
+// The capsule's nearest hit once the cheap rejects have passed, from the ray
+// around the capsule's centre (its reject test's parts: no recomputation).
+// A call of its own: inlined, its registers made every rejected call dearer
+// (case 1 ref, 83 calls per ray, mostly rejected: +2.4 % per ray).
+[[gnu::noinline]] inline std::optional<Hit> capsule_hit(const Ray& ray, const LocalRay& lr, const DVec3& a,
+                                                      const DVec3& ba, double len2, double r) {
+    Span span = hull(sphere_span(lr, a, r, 1), sphere_span(lr, -a, r, 2));
+    DVec3 w(0.0);
+    if (len2 > 0.0) {
+        const double len = std::sqrt(len2);
+        w = ba / len;
+        const DVec3 oa = lr.o - a;
+        const Span body = overlap(cylinder_span(lr, a, w, r, 0),
+                                  slab_span(glm::dot(oa, w), glm::dot(lr.d, w), 0.0, len, 0, 0));
+        span = hull(span, body);
+    }
+    SpanPick hit;
+    if (!pick(span, lr, ray, hit)) return std::nullopt;
+
+    const DVec3 p = lr.o + hit.s * lr.d;
+    const double u = len2 > 0.0 ? std::clamp(glm::dot(p - a, ba) / len2, 0.0, 1.0) : 0.0;
+    const DVec3 n = p - (a + u * ba);
+    const double nn = glm::dot(n, n);
+    const Vec3 normal = nn > 0.0 ? Vec3(n / std::sqrt(nn)) : Vec3(0.0f, 0.0f, 1.0f);
+    return Hit{hit.t, normal, static_cast<float>(u)};
+}
+
+}  // namespace detail
+
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const Capsule& cap, const Ray& ray, Sink& sink) {
     sink.on(Event::IsCapsule);
@@ -77,27 +108,7 @@ template <class Sink>
         if (nn > 1e-6 * dd * len2 && on * on > nn * (r * r * (1.0 + 2e-6) + 1e-16 * oo))
             return std::nullopt;
     }
-    const LocalRay lr = local_ray(d, oc, dd, od);  // local_ray(ray, c) without recomputing its parts
-
-    Span span = hull(sphere_span(lr, a, r, 1), sphere_span(lr, -a, r, 2));
-    DVec3 w(0.0);
-    if (len2 > 0.0) {
-        const double len = std::sqrt(len2);
-        w = ba / len;
-        const DVec3 oa = lr.o - a;
-        const Span body = overlap(cylinder_span(lr, a, w, r, 0),
-                                  slab_span(glm::dot(oa, w), glm::dot(lr.d, w), 0.0, len, 0, 0));
-        span = hull(span, body);
-    }
-    SpanPick hit;
-    if (!pick(span, lr, ray, hit)) return std::nullopt;
-
-    const DVec3 p = lr.o + hit.s * lr.d;
-    const double u = len2 > 0.0 ? std::clamp(glm::dot(p - a, ba) / len2, 0.0, 1.0) : 0.0;
-    const DVec3 n = p - (a + u * ba);
-    const double nn = glm::dot(n, n);
-    const Vec3 normal = nn > 0.0 ? Vec3(n / std::sqrt(nn)) : Vec3(0.0f, 0.0f, 1.0f);
-    return Hit{hit.t, normal, static_cast<float>(u)};
+    return detail::capsule_hit(ray, local_ray(d, oc, dd, od), a, ba, len2, r);
 }
 
 }  // namespace rtc

@@ -113,9 +113,9 @@ inline void finish_band(FrameResult& out, std::size_t tasks, std::size_t first,
     out.item_end = std::min(items, last * items_per_task);
 }
 
-// `tracer(const Ray&, CountingSink&, TraceScratch&) -> TraceHit` traces one
-// ray; it is a method's template instantiation, called directly (no virtual
-// call per ray).
+// `tracer(CountingSink&, TraceScratch&)` makes, once per task, the function
+// `(const Ray&) -> TraceHit` that traces one ray counting into that sink: a
+// method's template instantiation, called directly (no virtual call per ray).
 template <class Tracer>
 FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
     const auto start = std::chrono::steady_clock::now();
@@ -161,23 +161,25 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         std::uint64_t rays_traced = 0;
         // Every ray of a pixel (or of a ray-list tile) counts into one sink:
         // the per-pixel sums without a per-ray flush.
-        const auto trace = [&](const Ray& ray, CountingSink& sink) {
-            const TraceHit hit = tracer(ray, sink, sc);
+        CountingSink sink;
+        auto trace_ray = tracer(sink, sc);
+        const bool record_rays = fo.record_rays, record_hits = fo.record_hits;
+        const auto trace = [&](const Ray& ray) {
+            const TraceHit hit = trace_ray(ray);
             ++rays_traced;
-            if (fo.record_rays) t.rays.push_back(ray);
-            if (fo.record_hits) t.hits.push_back(hit);
+            if (record_rays) t.rays.push_back(ray);
+            if (record_hits) t.hits.push_back(hit);
             return hit;
         };
         if (frame.from_camera) {
             const auto py = static_cast<std::uint32_t>(tile);
-            CountingSink sink;
             for (std::uint32_t px = 0; px < static_cast<std::uint32_t>(out.width); ++px) {
                 const std::size_t pixel = static_cast<std::size_t>(py) * out.width + px;
                 sink.ray.clear();
                 Vec3 sum{0.0f};
                 for (std::uint32_t s = 0; s < frame.path.spp; ++s)
                     sum += trace_path(cam, px, py, s, frame.path,
-                                      [&](const Ray& ray, std::uint32_t) { return trace(ray, sink); })
+                                      [&](const Ray& ray, std::uint32_t) { return trace(ray); })
                                .radiance;
                 out.pixel_counts[pixel] = sink.ray;
                 out.radiance[pixel] = sum / static_cast<float>(frame.path.spp);
@@ -189,10 +191,9 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         } else {
             const std::size_t begin = tile * kRaysPerTile;
             const std::size_t end = std::min(frame.rays.size(), begin + kRaysPerTile);
-            CountingSink sink;
             for (std::size_t i = begin; i < end; ++i) {
                 sink.ray.clear();
-                trace(frame.rays[i], sink);
+                trace(frame.rays[i]);
                 out.ray_counts[i] = sink.ray;
             }
             totals.add_all(out.ray_counts.data() + begin, end - begin);

@@ -69,9 +69,10 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         TraceScratch& sc = scratch[thread];
         std::vector<WaveWork>& wv = waves[thread];
         CountingSink sink;
+        auto trace_ray = tracer(sink, sc);
         const auto trace_lane = [&](const Ray& ray, std::size_t depth, std::uint32_t pixel, RayCounts& into) {
             sink.ray.clear();
-            const TraceHit hit = tracer(ray, sink, sc);
+            const TraceHit hit = trace_ray(ray);
             into += sink.ray;
             ++t.rays_traced;
             if (wv.size() <= depth) wv.resize(depth + 1);
