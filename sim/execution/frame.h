@@ -173,21 +173,26 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         };
         if (frame.from_camera) {
             const auto py = static_cast<std::uint32_t>(tile);
-            for (std::uint32_t px = 0; px < static_cast<std::uint32_t>(out.width); ++px) {
-                const std::size_t pixel = static_cast<std::size_t>(py) * out.width + px;
+            // The row's arrays, width and sample count read once: the
+            // pixel loop's stores may alias them, so they were reloaded per
+            // pixel and per sample.
+            const auto width = static_cast<std::uint32_t>(out.width);
+            const std::uint32_t spp = frame.path.spp;
+            RayCounts* const row_counts = out.pixel_counts.data() + static_cast<std::size_t>(py) * width;
+            Vec3* const row_radiance = out.radiance.data() + static_cast<std::size_t>(py) * width;
+            for (std::uint32_t px = 0; px < width; ++px) {
                 sink.ray.clear();
                 Vec3 sum{0.0f};
-                for (std::uint32_t s = 0; s < frame.path.spp; ++s)
+                for (std::uint32_t s = 0; s < spp; ++s)
                     sum += trace_path(cam, px, py, s, frame.path,
                                       [&](const Ray& ray, std::uint32_t) { return trace(ray); })
                                .radiance;
-                out.pixel_counts[pixel] = sink.ray;
-                out.radiance[pixel] = sum / static_cast<float>(frame.path.spp);
+                row_counts[px] = sink.ray;
+                row_radiance[px] = sum / static_cast<float>(spp);
             }
             // The row's sum, read back from its pixels: cheaper than a 64-bit
             // add per pixel (EventTotals::add_all says why it is exact).
-            totals.add_all(out.pixel_counts.data() + static_cast<std::size_t>(py) * out.width,
-                           static_cast<std::size_t>(out.width));
+            totals.add_all(row_counts, width);
         } else {
             const std::size_t begin = tile * kRaysPerTile;
             const std::size_t end = std::min(frame.rays.size(), begin + kRaysPerTile);
