@@ -48,13 +48,10 @@ CameraFrame camera_frame(const Camera& c) {
     return f;
 }
 
-Ray primary_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
-                std::uint32_t sample, std::uint32_t spp, std::uint32_t seed) {
-    glm::vec2 o{0.5f, 0.5f};
-    if (spp > 1) {
-        const SampleRng rng(seed, px, py, sample);
-        o = pixel_offset(sample, spp, rng.uniform(rng_dim::kPixelX), rng.uniform(rng_dim::kPixelY));
-    }
+Ray jittered_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
+                 std::uint32_t sample, std::uint32_t spp, std::uint32_t seed) {
+    const SampleRng rng(seed, px, py, sample);
+    const glm::vec2 o = pixel_offset(sample, spp, rng.uniform(rng_dim::kPixelX), rng.uniform(rng_dim::kPixelY));
     return frame_ray(frame, static_cast<float>(px) + o.x, static_cast<float>(py) + o.y);
 }
 
