@@ -97,12 +97,13 @@ private:
         static_assert(sizeof(RayCounts) == kEventCount * sizeof(std::uint32_t));
         constexpr std::size_t kGroup = kEventCount % 4 == 0 ? 1 : kEventCount % 2 == 0 ? 2 : 4;
         constexpr std::size_t kWords = kGroup * kEventCount, kVectors = kWords / 4;
+        static_assert(kWords % 4 == 0);
         const std::size_t groups = count / kGroup;
         const auto* words = reinterpret_cast<const std::uint32_t*>(c);
         alignas(16) std::uint32_t lane_sum[kWords], lane_seen[kWords];
         // Aligned groups (the usual case: an even-width row of a frame whose
         // array is 16-byte aligned) let each add and OR read memory itself.
-        if (reinterpret_cast<std::uintptr_t>(words) % 16 == 0 && kWords % 4 == 0) {
+        if (reinterpret_cast<std::uintptr_t>(words) % 16 == 0) {
             sum_lanes<0, kVectors / 2, kWords, true>(words, groups, lane_sum, lane_seen);
             sum_lanes<kVectors / 2, kVectors - kVectors / 2, kWords, true>(words, groups, lane_sum, lane_seen);
         } else {
