@@ -7,12 +7,10 @@ namespace rtc {
 
 namespace {
 
-// Ones on the diagonal and zeros (of either sign) elsewhere, the translation zero.
+// Affine::identity() up to the signs of its zeros (glm's == compares floats: -0 == 0).
 bool is_identity(const Affine& a) {
-    for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r)
-            if (a.linear[c][r] != (c == r ? 1.0f : 0.0f)) return false;
-    return a.translation == Vec3(0.0f);
+    const Affine id = Affine::identity();
+    return a.linear == id.linear && a.translation == id.translation;
 }
 
 // See TwoLevel::lone_identity.
