@@ -10,6 +10,7 @@
 #include "sim/bench/bench_run.h"
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
+#include "sim/util/process_memory.h"
 
 #include <CLI/CLI.hpp>
 
@@ -228,6 +229,7 @@ nlohmann::json to_json(const RunFigures& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    keep_freed_memory();  // as simulate does: the figures are simulate's
     try {
         Cli cli = parse(argc, argv);
         if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);

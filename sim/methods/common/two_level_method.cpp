@@ -2,6 +2,13 @@
 
 namespace rtc {
 
+std::vector<Instance> instance_slots(std::size_t n) {
+    std::vector<Instance> instances;
+    instances.reserve(n + 1);
+    instances.resize(n);
+    return instances;
+}
+
 void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
                    std::vector<BlasKind>& kinds, std::vector<Instance>& instances) {
     if (g.triangles.empty()) return;

@@ -24,6 +24,12 @@ struct TwoLevelStructures {
     std::vector<BlasKind> blas_kind;  // per BLAS
 };
 
+// `n` default instances with room for add_mesh_blas's one more. Growing a
+// vector of a million instances by one element moves them all into a buffer
+// twice as large: 104 MB copied and 208 MB of fresh pages (the obb build of
+// configs/runs/head_1m.json spent a quarter of its page faults there).
+[[nodiscard]] std::vector<Instance> instance_slots(std::size_t n);
+
 // Appends the triangle BLAS (if the geometry has a mesh) and its identity instance.
 void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
                    std::vector<BlasKind>& kinds, std::vector<Instance>& instances);
