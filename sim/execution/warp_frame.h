@@ -28,7 +28,10 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     const std::size_t tasks = frame.from_camera
                                   ? (static_cast<std::size_t>(frame.camera.height) + th - 1) / th
                                   : (frame.rays.size() + rays_per_task - 1) / rays_per_task;
-    struct Task {
+    // Cache-line aligned, here and per thread below: two threads' tasks, or
+    // two threads' scratch, sharing a line would pass it back and forth per
+    // ray (rays_traced, the calls' vector, the last call profile).
+    struct alignas(64) Task {
         EventTotals totals;
         std::vector<WarpTotals> warp;
         WarpTrace trace;
@@ -38,12 +41,17 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     };
     const auto [first, last] = band_range(tasks, fo.band, fo.bands);
     std::vector<Task> task_out(last - first);
-    // Per thread: scratch, call profiles, program prices per preset, waves per bounce.
-    std::vector<TraceScratch> scratch(threads);
-    std::vector<CallProfiles> profiles(threads);
-    std::vector<std::vector<ProgramPrices>> prices(threads, std::vector<ProgramPrices>(presets));
-    for (unsigned i = 0; i < threads; ++i) scratch[i].profiles = &profiles[i];
-    std::vector<std::vector<WaveWork>> waves(threads);
+    struct alignas(64) PerThread {
+        TraceScratch scratch;
+        CallProfiles profiles;
+        std::vector<ProgramPrices> prices;  // per preset
+        std::vector<WaveWork> waves;        // per bounce
+    };
+    std::vector<PerThread> per_thread(threads);
+    for (PerThread& p : per_thread) {
+        p.scratch.profiles = &p.profiles;
+        p.prices.resize(presets);
+    }
     if (frame.from_camera) {
         out.width = frame.camera.width;
         out.height = frame.camera.height;
@@ -66,8 +74,9 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         const std::size_t task = first + slot;
         Task& t = task_out[slot];
         t.warp.resize(presets);
-        TraceScratch& sc = scratch[thread];
-        std::vector<WaveWork>& wv = waves[thread];
+        PerThread& mine = per_thread[thread];
+        TraceScratch& sc = mine.scratch;
+        std::vector<WaveWork>& wv = mine.waves;
         CountingSink sink;
         auto trace_ray = tracer(sink, sc);
         const auto trace_lane = [&](const Ray& ray, std::size_t depth, std::uint32_t pixel, RayCounts& into) {
@@ -77,7 +86,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             ++t.rays_traced;
             if (wv.size() <= depth) wv.resize(depth + 1);
             WaveWork& w = wv[depth];
-            w.profiles = &profiles[thread];
+            w.profiles = &mine.profiles;
             w.lanes.push_back({sink.ray, static_cast<std::uint32_t>(w.calls.size()),
                                static_cast<std::uint32_t>(sc.calls.size()), pixel});
             w.calls.insert(w.calls.end(), sc.calls.begin(), sc.calls.end());
@@ -87,7 +96,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             for (WaveWork& w : wv) {
                 if (w.lanes.empty()) continue;
                 for (std::size_t p = 0; p < presets; ++p) {
-                    const WavePrice price = price_wave(w, *fo.warp_presets[p], prices[thread][p]);
+                    const WavePrice price = price_wave(w, *fo.warp_presets[p], mine.prices[p]);
                     t.warp[p].add(price, w.lanes.size());
                     if (!frame.from_camera) continue;
                     const float share = static_cast<float>(price.total() / static_cast<double>(w.lanes.size()));
