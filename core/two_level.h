@@ -19,6 +19,7 @@
 
 namespace rtc {
 
+// An instance as a method describes it (build_two_level's input).
 struct Instance {
     std::uint32_t blas = 0;  // index into TwoLevel::blases
     std::uint32_t id = 0;    // user instance id, handed to the leaf program
@@ -26,9 +27,21 @@ struct Instance {
     Affine object_from_world;
 };
 
+// An instance as the traversal reads it: what the instance step needs, in one
+// 64-byte line. (world_from_object only places the instance's TLAS box.) The
+// whole Instance, 104 bytes at a 104-byte stride, spread the same fields over
+// two or three lines.
+struct alignas(64) TlasInstance {
+    Affine object_from_world;
+    std::uint32_t blas = 0;
+    std::uint32_t id = 0;
+};
+static_assert(sizeof(TlasInstance) == 64);
+
 struct TwoLevel {
     std::vector<Bvh> blases;
-    std::vector<Instance> instances;
+    // In the TLAS's leaf order: leaf slot k holds instance k (build_two_level).
+    UninitializedVector<TlasInstance> instances;
     Bvh tlas;  // over the world-space boxes of the instances' BLAS roots
     // Set by build_two_level: the TLAS root is one leaf over one instance
     // whose object_from_world is the identity (ones on the diagonal, zeros
@@ -53,7 +66,7 @@ struct TwoLevel {
 // What a primitive program sees: which instance and primitive, the ray in both
 // spaces and the current closest distance.
 struct PrimitiveQuery {
-    const Instance& instance;
+    const TlasInstance& instance;
     std::uint32_t instance_index;
     std::uint32_t prim;  // primitive index inside the instance's BLAS
     const Ray& world_ray;
@@ -96,7 +109,7 @@ namespace detail {
 // first. Inlined into every caller (the BLAS traversal and the one-leaf path):
 // as a call it cost case 1 ref 4 % more instructions.
 template <TraversalMode Mode, class PrimFn>
-[[gnu::always_inline]] inline auto blas_leaf(const Instance& inst, const std::uint32_t& index, const Bvh& blas,
+[[gnu::always_inline]] inline auto blas_leaf(const TlasInstance& inst, const std::uint32_t& index, const Bvh& blas,
                                              const Ray& ray, const Ray& object_ray, PrimFn& on_prim) {
     return [&inst, &index, &blas, &ray, &object_ray, &on_prim](std::uint32_t first, std::uint32_t count,
                                                               float tmax) __attribute__((always_inline)) {
@@ -127,7 +140,7 @@ float trace_lone_identity(const TwoLevel& scene, const Ray& ray, Sink& sink, Pri
     const float entry = intersect_lone_box(leaf.box, ray.origin, inv_dir, ray.tmin, ray.tmax);
     if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > ray.tmax)) return kInfinity;
     const std::uint32_t index = scene.tlas.prim_ids[leaf.first];
-    const Instance& inst = scene.instances[index];
+    const TlasInstance& inst = scene.instances[index];
     sink.on(Event::InstanceTransform);
     const Bvh& blas = scene.blases[inst.blas];
     const auto on_blas_leaf = blas_leaf<Mode>(inst, index, blas, ray, ray, on_prim);
@@ -151,7 +164,7 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
         float nearest = kInfinity;
         for (std::uint32_t k = 0; k < count; ++k) {
             const std::uint32_t index = scene.tlas.prim_ids[first + k];
-            const Instance& inst = scene.instances[index];
+            const TlasInstance& inst = scene.instances[index];
             sink.on(Event::InstanceTransform);
             const Bvh& blas = scene.blases[inst.blas];
             const BvhEntry* leaf = kLaneInstances ? one_leaf(blas) : nullptr;

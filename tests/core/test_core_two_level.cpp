@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -60,6 +61,20 @@ TEST_CASE("two-level: instanced triangles equal the flattened world-space scene"
         BuildOptions o;
         o.width = width;
         const TwoLevel scene = build_two_level(blases, instances, o);
+        // The instances sit in the TLAS's leaf order: leaf slot k names
+        // instance k, and each input instance appears once, as itself.
+        REQUIRE(scene.instances.size() == instances.size());
+        std::vector<int> seen(instances.size(), 0);
+        for (std::uint32_t k = 0; k < scene.instances.size(); ++k) {
+            CHECK(scene.tlas.prim_ids[k] == k);
+            const TlasInstance& placed = scene.instances[k];
+            REQUIRE(placed.id < instances.size());  // ids here are the input positions
+            const Instance& in = instances[placed.id];
+            ++seen[placed.id];
+            CHECK(placed.blas == in.blas);
+            CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(Affine)) == 0);
+        }
+        CHECK(std::count(seen.begin(), seen.end(), 1) == static_cast<long>(instances.size()));
         int same = 0, hits = 0, total = 0;
         for (int r = 0; r < 1000; ++r) {
             const Ray ray = rtc::test::random_ray(rng);
