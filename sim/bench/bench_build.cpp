@@ -2,10 +2,14 @@
 // scenes and prints, per scene, a hash of the tree (root, entries, prim ids),
 // its node count and SAH cost, so that a faster builder can be checked to
 // give the same trees. Usage:
-//   build/bench_build [--scale S] [--repeat R] [--threads T] [--cases a,b]
+//   build/bench_build [--scale S] [--repeat R] [--threads T] [--cases a,b] [--fresh-memory 1]
 // S multiplies every scene's primitive count (default 1: about 1 M each);
 // wall time is the best of R builds, M prims/s per thread from it; the
 // CPU-time rate (all threads' CPU time over R builds) drifts less with load.
+// Freed memory stays in the heap as in simulate (sim/util/process_memory.h),
+// so builds after the first reuse its pages; --fresh-memory 1 leaves glibc's
+// default, where every build takes fresh pages (on a VM with slow page faults
+// that is most of the difference, see docs/benchmark.md).
 // For callgrind: valgrind --tool=callgrind --toggle-collect='*build_bvh*'
 //   build/bench_build --scale 0.2 --repeat 1 --threads 1
 #include "core/bvh.h"
@@ -16,6 +20,7 @@
 #include "scenes/generators/hair_gen.h"
 #include "scenes/generators/random.h"
 #include "scenes/generators/sphere_mesh.h"
+#include "sim/util/process_memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,6 +105,7 @@ std::vector<Aabb> make_case(const std::string& name, double scale) {
 int main(int argc, char** argv) {
     double scale = 1.0;
     int repeat = 5, threads = 1;
+    bool fresh_memory = false;
     std::string cases = "bundle,hair,random,triangles";
     for (int i = 1; i < argc; i += 2) {
         const std::string a = argv[i];
@@ -108,8 +114,12 @@ int main(int argc, char** argv) {
         else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--threads") threads = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--cases") cases = argv[i + 1];
+        else if (a == "--fresh-memory") fresh_memory = std::atoi(argv[i + 1]) != 0;
         else { std::fprintf(stderr, "bench_build: unknown option %s\n", a.c_str()); return 2; }
     }
+    const bool kept = !fresh_memory && keep_freed_memory();
+    std::printf("memory: %s\n", kept ? "freed memory kept in the heap (as simulate does)"
+                                      : "glibc's default (fresh pages for every large array)");
     std::printf("%-10s %9s %9s %12s %18s %9s %12s %12s\n", "case", "prims", "nodes", "SAH", "tree hash",
                 "best s", "Mprims/s/thr", "Mprims/cpu-s");
     std::size_t pos = 0;
