@@ -40,7 +40,9 @@ static_assert(sizeof(TlasInstance) == 64);
 
 struct TwoLevel {
     std::vector<Bvh> blases;
-    // In the TLAS's leaf order: leaf slot k holds instance k (build_two_level).
+    // In the TLAS's leaf order: leaf slot k holds instance k, and
+    // tlas.prim_ids is the identity (build_two_level); the traversal relies
+    // on it and indexes instances by leaf slot.
     UninitializedVector<TlasInstance> instances;
     Bvh tlas;  // over the world-space boxes of the instances' BLAS roots
     // Set by build_two_level: the TLAS root is one leaf over one instance
@@ -139,7 +141,7 @@ float trace_lone_identity(const TwoLevel& scene, const Ray& ray, Sink& sink, Pri
     const BvhEntry& leaf = scene.tlas.entries[scene.tlas.root.first];
     const float entry = intersect_lone_box(leaf.box, ray.origin, inv_dir, ray.tmin, ray.tmax);
     if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > ray.tmax)) return kInfinity;
-    const std::uint32_t index = scene.tlas.prim_ids[leaf.first];
+    const std::uint32_t index = leaf.first;  // the leaf ids are the identity (TwoLevel::instances)
     const TlasInstance& inst = scene.instances[index];
     sink.on(Event::InstanceTransform);
     const Bvh& blas = scene.blases[inst.blas];
@@ -163,7 +165,9 @@ float trace_instances(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&
                                   float tmax) __attribute__((always_inline)) {
         float nearest = kInfinity;
         for (std::uint32_t k = 0; k < count; ++k) {
-            const std::uint32_t index = scene.tlas.prim_ids[first + k];
+            // The TLAS's leaf ids are the identity (TwoLevel::instances): slot
+            // first + k is the instance, without a dependent load of prim_ids.
+            const std::uint32_t index = first + k;
             const TlasInstance& inst = scene.instances[index];
             sink.on(Event::InstanceTransform);
             const Bvh& blas = scene.blases[inst.blas];
