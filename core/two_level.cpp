@@ -37,7 +37,7 @@ Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world
     return {blas, id, world_from_object, *inverse};
 }
 
-TwoLevel build_two_level(std::vector<Bvh> blases, std::vector<Instance> instances,
+TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> instances,
                          const BuildOptions& tlas_options) {
     for (std::size_t i = 0; i < instances.size(); ++i)
         if (instances[i].blas >= blases.size())

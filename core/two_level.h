@@ -62,8 +62,12 @@ struct TwoLevel {
                                      const Affine& world_from_object);
 
 // Builds the TLAS over `instances` (whose BLASes must already be in `blases`).
-[[nodiscard]] TwoLevel build_two_level(std::vector<Bvh> blases, std::vector<Instance> instances,
+[[nodiscard]] TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> instances,
                                        const BuildOptions& tlas_options);
+[[nodiscard]] inline TwoLevel build_two_level(std::vector<Bvh> blases, const std::vector<Instance>& instances,
+                                              const BuildOptions& tlas_options) {
+    return build_two_level(std::move(blases), std::span<const Instance>(instances), tlas_options);
+}
 
 // What a primitive program sees: which instance and primitive, the ray in both
 // spaces and the current closest distance.

@@ -83,7 +83,7 @@ ClusterStructures build_cluster(const std::vector<Prim>& prims, const Geometry& 
     if (singles) blases[0] = build_bvh(std::vector<Aabb>{kUnitBox}, o.custom_blas);
     BuildOptions one = o.custom_blas;
     one.threads = 1;
-    std::vector<Instance> instances = instance_slots(n);
+    UninitializedVector<Instance> instances = instance_slots(n);
     parallel_for(n, o.custom_blas.threads, [&](std::size_t i, unsigned) {
         const std::span<const std::uint32_t> members =
             std::span<const std::uint32_t>(c.members).subspan(c.first[i], c.first[i + 1] - c.first[i]);

@@ -24,7 +24,7 @@ TwoLevelStructures build_obb(const std::vector<Prim>& prims, const Geometry& g, 
     blases.push_back(build_bvh(std::vector<Aabb>{kUnitBox}, o.custom_blas));
     std::vector<BlasKind> kinds{BlasKind::Custom};
     // One instance per primitive (each slot written by one task: deterministic).
-    std::vector<Instance> instances = instance_slots(prims.size());
+    UninitializedVector<Instance> instances = instance_slots(prims.size());
     parallel_for(prims.size(), o.tlas.threads, [&](std::size_t i, unsigned) {
         instances[i] = make_instance(0, static_cast<std::uint32_t>(i),
                                      oriented_bounds(prims[i], o.obb).world_from_unit);

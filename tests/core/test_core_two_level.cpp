@@ -139,7 +139,7 @@ TEST_CASE("two-level: singular transforms and dangling BLAS indices are rejected
     CHECK_THROWS_AS((void)build_two_level(blases, {make_instance(3, 0, Affine{})}, BuildOptions{}),
                     std::invalid_argument);
     // An empty TLAS traces to nothing.
-    const TwoLevel none = build_two_level({}, {}, BuildOptions{});
+    const TwoLevel none = build_two_level({}, std::vector<Instance>{}, BuildOptions{});
     NullSink sink;
     const Ray ray{Vec3(0), 0.0f, Vec3(0, 0, 1), kInfinity};
     CHECK(trace_two_level<TraversalMode::Closest>(none, ray, sink, [](const PrimitiveQuery&) {

@@ -2,22 +2,19 @@
 
 namespace rtc {
 
-std::vector<Instance> instance_slots(std::size_t n) {
-    std::vector<Instance> instances;
+UninitializedVector<Instance> instance_slots(std::size_t n) {
+    UninitializedVector<Instance> instances;
     instances.reserve(n + 1);
     instances.resize(n);
     return instances;
 }
 
-void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
-                   std::vector<BlasKind>& kinds, std::vector<Instance>& instances) {
-    if (g.triangles.empty()) return;
+std::optional<Bvh> mesh_blas(const Geometry& g, const MethodOptions& o) {
+    if (g.triangles.empty()) return std::nullopt;
     std::vector<Aabb> boxes;
     boxes.reserve(g.triangles.size());
     for (const Triangle& t : g.triangles) boxes.push_back(bounds(t));
-    blases.push_back(build_bvh(boxes, o.triangle_blas));
-    kinds.push_back(BlasKind::Triangles);
-    instances.push_back(make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{}));
+    return build_bvh(boxes, o.triangle_blas);
 }
 
 ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g, const MethodOptions& o) {

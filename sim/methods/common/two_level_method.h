@@ -11,6 +11,7 @@
 #include "core/two_level.h"
 #include "sim/methods/method.h"
 
+#include <optional>
 #include <vector>
 
 namespace rtc {
@@ -24,15 +25,27 @@ struct TwoLevelStructures {
     std::vector<BlasKind> blas_kind;  // per BLAS
 };
 
-// `n` default instances with room for add_mesh_blas's one more. Growing a
-// vector of a million instances by one element moves them all into a buffer
-// twice as large: 104 MB copied and 208 MB of fresh pages (the obb build of
-// configs/runs/head_1m.json spent a quarter of its page faults there).
-[[nodiscard]] std::vector<Instance> instance_slots(std::size_t n);
+// `n` unconstructed instances (the caller writes every one, in parallel)
+// with room for add_mesh_blas's one more. Growing a vector of a million
+// instances by one element moves them all into a buffer twice as large
+// (104 MB copied and 208 MB of fresh pages: a quarter of the obb build's page
+// faults on configs/runs/head_1m.json), and constructing them first is a
+// serial pass over fresh pages.
+[[nodiscard]] UninitializedVector<Instance> instance_slots(std::size_t n);
+
+// The triangle BLAS over the mesh, if the geometry has one.
+[[nodiscard]] std::optional<Bvh> mesh_blas(const Geometry& g, const MethodOptions& o);
 
 // Appends the triangle BLAS (if the geometry has a mesh) and its identity instance.
+template <class Instances>
 void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
-                   std::vector<BlasKind>& kinds, std::vector<Instance>& instances);
+                   std::vector<BlasKind>& kinds, Instances& instances) {
+    std::optional<Bvh> mesh = mesh_blas(g, o);
+    if (!mesh) return;
+    blases.push_back(std::move(*mesh));
+    kinds.push_back(BlasKind::Triangles);
+    instances.push_back(make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{}));
+}
 
 [[nodiscard]] StructureCounts count_two_level(const TwoLevelStructures& s);
 
