@@ -5,7 +5,7 @@
 // and takes fresh pages for the next one, and each fresh page is a page fault
 // and a zeroed 4 kB. Kept in the heap, the next array reuses the pages.
 // Measured on configs/runs/head_1m.json (docs/benchmark.md, issue 19
-// round 9): 214 k -> ~140 k page faults, the obb build 1.15 -> ~0.95 s.
+// round 9): 214 k -> 143 k page faults, the obb build 1.19 -> 0.82-0.94 s.
 //
 // A process setting, so only the programs' main() call it; the Python module
 // leaves its host process's allocator alone.
