@@ -21,7 +21,7 @@ bool has_lone_identity(const TwoLevel& s) {
     if (t.root.count != (BvhEntry::kInnerBit | 1u) || t.entries[t.root.first].is_inner()) return false;
     const BvhEntry& leaf = t.entries[t.root.first];
     if (leaf.count != 1) return false;
-    const TlasInstance& inst = s.instances[t.prim_ids[leaf.first]];
+    const TlasInstance& inst = s.instances[leaf.first];  // leaf slot = instance (TwoLevel::instances)
     const Bvh& blas = s.blases[inst.blas];
     return is_identity(inst.object_from_world) && (blas.root.count & BvhEntry::kInnerBit) &&
            !detail::one_leaf(blas);

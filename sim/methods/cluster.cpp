@@ -97,7 +97,7 @@ ClusterStructures build_cluster(const std::vector<Prim>& prims, const Geometry& 
     });
     std::vector<BlasKind> kinds(blases.size(), BlasKind::Custom);
     add_mesh_blas(g, o, blases, kinds, instances);
-    return {{build_two_level(std::move(blases), std::move(instances), o.tlas), std::move(kinds)},
+    return {{build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)},
             std::move(c.members)};
 }
 

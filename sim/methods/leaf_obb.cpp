@@ -66,7 +66,7 @@ LeafObbStructures build_leaf_obb(const std::vector<Prim>& prims, const Geometry&
     std::vector<BlasKind> kinds{BlasKind::Custom};
     std::vector<Instance> instances{make_instance(0, 0, Affine{})};
     add_mesh_blas(g, o, blases, kinds, instances);
-    return {{build_two_level(std::move(blases), std::move(instances), o.tlas), std::move(kinds)},
+    return {{build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)},
             std::move(unit_from_world)};
 }
 

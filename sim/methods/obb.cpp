@@ -30,7 +30,7 @@ TwoLevelStructures build_obb(const std::vector<Prim>& prims, const Geometry& g, 
                                      oriented_bounds(prims[i], o.obb).world_from_unit);
     });
     add_mesh_blas(g, o, blases, kinds, instances);
-    return {build_two_level(std::move(blases), std::move(instances), o.tlas), std::move(kinds)};
+    return {build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)};
 }
 
 }  // namespace

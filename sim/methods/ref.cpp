@@ -27,7 +27,7 @@ TwoLevelStructures build_ref(const std::vector<Prim>& prims, const Geometry& g, 
     std::vector<BlasKind> kinds{BlasKind::Custom};
     std::vector<Instance> instances{make_instance(0, 0, Affine{})};
     add_mesh_blas(g, o, blases, kinds, instances);
-    return {build_two_level(std::move(blases), std::move(instances), o.tlas), std::move(kinds)};
+    return {build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)};
 }
 
 }  // namespace
