@@ -75,6 +75,12 @@ paths and presets:
   install prefix's share/rtcsim/hw, else the source tree's configs/hw; or by
   a path (with a '/' or ending in .json). Details: configs/README.md.
 
+memory:
+  RTCSIM_HUGE_PAGES=auto|on|off (default auto): huge pages for arrays of 4 MB
+  or more. auto times faulting fresh memory both ways once and takes huge
+  pages where they are clearly faster; report.json's provenance says what it
+  chose. Speed only: counts and reports do not depend on it.
+
 examples (from the source tree; installed configs are in <prefix>/share/rtcsim/runs):
   simulate configs/runs/quickstart.json
   simulate configs/runs/quickstart.json --out=out/quick-1spp --set workload.spp=1 --threads=2

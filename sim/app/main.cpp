@@ -3,7 +3,15 @@
 #include "sim/app/simulate_main.h"
 #include "sim/util/process_memory.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 int main(int argc, char** argv) {
     rtc::keep_freed_memory();
+    if (!rtc::set_huge_pages_from_environment()) {
+        std::fprintf(stderr, "simulate: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
+                     std::getenv("RTCSIM_HUGE_PAGES"));
+        return 2;
+    }
     return rtc::simulate_main(std::vector<std::string>(argv + 1, argv + argc));
 }

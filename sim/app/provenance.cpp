@@ -2,6 +2,7 @@
 
 #include "sim/config/config_json.h"
 #include "sim/util/json_file.h"
+#include "sim/util/process_memory.h"
 #include "sim/util/version.h"
 
 #include <algorithm>
@@ -50,6 +51,7 @@ ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<
     j["threads"] = {{"requested", threads},
                     {"used", threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency())}};
     if (!command_line.empty()) j["command_line"] = command_line;
+    j["huge_pages"] = huge_pages_summary();  // RTCSIM_HUGE_PAGES and, under auto, the probe's choice
     j["config_file"] = run.config.file;
     j["repriced"] = run.repriced;  // priced from the previous sweep point's trace
     j["effective_config"] = run_config_to_json(run.config);

@@ -230,6 +230,11 @@ nlohmann::json to_json(const RunFigures& r) {
 
 int main(int argc, char** argv) {
     keep_freed_memory();  // as simulate does: the figures are simulate's
+    if (!set_huge_pages_from_environment()) {
+        std::fprintf(stderr, "bench: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
+                     std::getenv("RTCSIM_HUGE_PAGES"));
+        return 2;
+    }
     try {
         Cli cli = parse(argc, argv);
         if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);
@@ -288,7 +293,9 @@ int main(int argc, char** argv) {
         }
         const double peak_mib = static_cast<double>(peak_rss_bytes()) / (1024.0 * 1024.0);
         std::printf("peak memory (ru_maxrss): %.1f MiB\n", peak_mib);
+        std::printf("huge pages (RTCSIM_HUGE_PAGES): %s\n", huge_pages_summary().c_str());
         out["peak_rss_mib"] = peak_mib;
+        out["huge_pages"] = huge_pages_summary();
         if (!cli.json_file.empty()) {
             std::ofstream f(cli.json_file);
             f << out.dump(2) << "\n";
