@@ -14,6 +14,7 @@ struct AreaStats {
     [[nodiscard]] double ratio_tight() const { return obb_tight > 0 ? aabb / obb_tight : 0.0; }
 };
 
-[[nodiscard]] AreaStats area_stats(const PrimitiveArray& prims);
+// On `threads` threads (0 = all cores); the sums do not depend on it.
+[[nodiscard]] AreaStats area_stats(const PrimitiveArray& prims, unsigned threads = 0);
 
 }  // namespace rtc

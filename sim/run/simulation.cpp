@@ -122,7 +122,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
-    r.areas = area_stats(geometry.prims);
+    r.areas = area_stats(geometry.prims, ctx.threads);
     r.mesh_vertices = scene.mesh.vertices.size();
     r.mesh_triangles = scene.mesh.triangles.size();
     r.convert_seconds = seconds_since(t_convert);
