@@ -6,6 +6,7 @@
 #include "intersectors/link.h"
 #include "intersectors/phantom.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace rtc {

@@ -1,8 +1,8 @@
 // Replaces the global operator new of the programs linked with it (simulate,
 // bench, bench_build; see sim/util/process_memory.h) so that large arrays
 // (std::vector's and every other allocation through new) get huge pages when
-// the mode says so. Allocation itself is unchanged: malloc and aligned_alloc,
-// which the standard library's operator delete frees with free(). Not built
+// the mode says so. Allocation itself is what the standard library does:
+// malloc and aligned_alloc, freed with free() by the deletes below. Not built
 // under the sanitizers, which replace operator new themselves to check it.
 #include "sim/util/process_memory.h"
 
