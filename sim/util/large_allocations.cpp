@@ -6,16 +6,20 @@
 // under the sanitizers, which replace operator new themselves to check it.
 #include "sim/util/process_memory.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <new>
 
 namespace {
 
-void* allocate(std::size_t bytes, std::size_t alignment) {
+constexpr std::size_t kDefault = __STDCPP_DEFAULT_NEW_ALIGNMENT__;
+
+// `alignment`: a power of two, at least kDefault (malloc's).
+void* allocate(std::size_t bytes, std::size_t alignment = kDefault) {
     if (bytes == 0) bytes = 1;
-    void* p = alignment <= __STDCPP_DEFAULT_NEW_ALIGNMENT__
-                  ? std::malloc(bytes)
-                  : std::aligned_alloc(alignment, (bytes + alignment - 1) / alignment * alignment);
+    // aligned_alloc wants a multiple of the alignment.
+    void* p = alignment <= kDefault ? std::malloc(bytes)
+                                    : std::aligned_alloc(alignment, (bytes + alignment - 1) & ~(alignment - 1));
     if (!p) throw std::bad_alloc();
     if (bytes >= rtc::kLargeAllocationBytes) rtc::advise_large_allocation(p, bytes);
     return p;
@@ -23,21 +27,21 @@ void* allocate(std::size_t bytes, std::size_t alignment) {
 
 }  // namespace
 
-void* operator new(std::size_t bytes) { return allocate(bytes, 0); }
-void* operator new[](std::size_t bytes) { return allocate(bytes, 0); }
-void* operator new(std::size_t bytes, std::align_val_t a) { return allocate(bytes, static_cast<std::size_t>(a)); }
-void* operator new[](std::size_t bytes, std::align_val_t a) { return allocate(bytes, static_cast<std::size_t>(a)); }
+void* operator new(std::size_t bytes) { return allocate(bytes); }
+void* operator new[](std::size_t bytes) { return allocate(bytes); }
+void* operator new(std::size_t bytes, std::align_val_t a) { return allocate(bytes, std::max(kDefault, static_cast<std::size_t>(a))); }
+void* operator new[](std::size_t bytes, std::align_val_t a) { return allocate(bytes, std::max(kDefault, static_cast<std::size_t>(a))); }
 void* operator new(std::size_t bytes, const std::nothrow_t&) noexcept {
-    try { return allocate(bytes, 0); } catch (...) { return nullptr; }
+    try { return allocate(bytes); } catch (...) { return nullptr; }
 }
 void* operator new[](std::size_t bytes, const std::nothrow_t&) noexcept {
-    try { return allocate(bytes, 0); } catch (...) { return nullptr; }
+    try { return allocate(bytes); } catch (...) { return nullptr; }
 }
 void* operator new(std::size_t bytes, std::align_val_t a, const std::nothrow_t&) noexcept {
-    try { return allocate(bytes, static_cast<std::size_t>(a)); } catch (...) { return nullptr; }
+    try { return allocate(bytes, std::max(kDefault, static_cast<std::size_t>(a))); } catch (...) { return nullptr; }
 }
 void* operator new[](std::size_t bytes, std::align_val_t a, const std::nothrow_t&) noexcept {
-    try { return allocate(bytes, static_cast<std::size_t>(a)); } catch (...) { return nullptr; }
+    try { return allocate(bytes, std::max(kDefault, static_cast<std::size_t>(a))); } catch (...) { return nullptr; }
 }
 
 // The matching deletes: free() for every form, as malloc and aligned_alloc

@@ -65,6 +65,12 @@ const Probe& probe() {
 
 std::atomic<bool> g_probed{false};
 
+// Bytes from `p` to the next 2 MB boundary (0 on one).
+std::size_t up_to_huge_page(const void* p) {
+    const auto a = reinterpret_cast<std::uintptr_t>(p);
+    return static_cast<std::size_t>(((a + kHugePage - 1) & ~(kHugePage - 1)) - a);
+}
+
 }  // namespace
 
 double fresh_memory_seconds(std::size_t bytes, bool huge_pages) noexcept {
@@ -72,9 +78,9 @@ double fresh_memory_seconds(std::size_t bytes, bool huge_pages) noexcept {
     const std::size_t mapped = bytes + kHugePage;
     void* raw = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (raw == MAP_FAILED) return -1.0;
-    auto* p = reinterpret_cast<volatile char*>((reinterpret_cast<std::uintptr_t>(raw) + kHugePage - 1) &
-                                               ~(kHugePage - 1));
-    if (huge_pages) madvise(const_cast<char*>(p), bytes, MADV_HUGEPAGE);
+    char* const aligned = static_cast<char*>(raw) + up_to_huge_page(raw);
+    volatile char* p = aligned;
+    if (huge_pages) madvise(aligned, bytes, MADV_HUGEPAGE);
     const auto t0 = std::chrono::steady_clock::now();
     for (std::size_t i = 0; i < bytes; i += 4096) p[i] = 1;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -114,9 +120,10 @@ void advise_large_allocation(void* p, std::size_t bytes) noexcept {
     }
     // Only whole 2 MB pages inside the block: advice past its ends would
     // reach the heap's other blocks.
-    const auto begin = (reinterpret_cast<std::uintptr_t>(p) + kHugePage - 1) & ~(kHugePage - 1);
-    const auto end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kHugePage - 1);
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+    const std::size_t skip = up_to_huge_page(p);
+    if (bytes <= skip) return;
+    const std::size_t whole = (bytes - skip) & ~std::size_t{kHugePage - 1};
+    if (whole > 0) madvise(static_cast<char*>(p) + skip, whole, MADV_HUGEPAGE);
 #else
     (void)p, (void)bytes;
 #endif
