@@ -94,7 +94,7 @@ TEST_CASE("huge pages: a large block's whole 2 MB pages are advised, and nothing
     CHECK(huge_pages_summary() == "off");
 }
 
-TEST_CASE("huge pages: RTCSIM_HUGE_PAGES sets the mode; anything else is refused and leaves it off") {
+TEST_CASE("huge pages: RTCSIM_HUGE_PAGES sets the mode, and anything else is refused and leaves it off") {
     ModeGuard guard;
     const char* saved = std::getenv("RTCSIM_HUGE_PAGES");
     const std::string old = saved ? saved : "";
