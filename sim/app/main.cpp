@@ -8,10 +8,6 @@
 
 int main(int argc, char** argv) {
     rtc::keep_freed_memory();
-    if (!rtc::set_huge_pages_from_environment()) {
-        std::fprintf(stderr, "simulate: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
-                     std::getenv("RTCSIM_HUGE_PAGES"));
-        return 2;
-    }
+    if (!rtc::set_huge_pages_from_environment("simulate")) return 2;
     return rtc::simulate_main(std::vector<std::string>(argv + 1, argv + argc));
 }

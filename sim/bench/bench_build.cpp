@@ -118,11 +118,7 @@ int main(int argc, char** argv) {
         else { std::fprintf(stderr, "bench_build: unknown option %s\n", a.c_str()); return 2; }
     }
     const bool kept = !fresh_memory && keep_freed_memory();
-    if (!set_huge_pages_from_environment()) {
-        std::fprintf(stderr, "bench_build: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
-                     std::getenv("RTCSIM_HUGE_PAGES"));
-        return 2;
-    }
+    if (!set_huge_pages_from_environment("bench_build")) return 2;
     std::printf("memory: %s\n", kept ? "freed memory kept in the heap (as simulate does)"
                                       : "glibc's default (fresh pages for every large array)");
     std::printf("%-10s %9s %9s %12s %18s %9s %12s %12s\n", "case", "prims", "nodes", "SAH", "tree hash",

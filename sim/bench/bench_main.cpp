@@ -230,11 +230,7 @@ nlohmann::json to_json(const RunFigures& r) {
 
 int main(int argc, char** argv) {
     keep_freed_memory();  // as simulate does: the figures are simulate's
-    if (!set_huge_pages_from_environment()) {
-        std::fprintf(stderr, "bench: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
-                     std::getenv("RTCSIM_HUGE_PAGES"));
-        return 2;
-    }
+    if (!set_huge_pages_from_environment("bench")) return 2;
     try {
         Cli cli = parse(argc, argv);
         if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);

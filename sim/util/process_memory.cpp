@@ -109,6 +109,13 @@ bool set_huge_pages_from_environment() {
     return true;
 }
 
+bool set_huge_pages_from_environment(const char* program) {
+    if (set_huge_pages_from_environment()) return true;
+    std::fprintf(stderr, "%s: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n", program,
+                 std::getenv("RTCSIM_HUGE_PAGES"));
+    return false;
+}
+
 void advise_large_allocation(void* p, std::size_t bytes) noexcept {
 #if defined(__linux__)
     const HugePages mode = g_mode.load(std::memory_order_relaxed);

@@ -40,6 +40,10 @@ inline constexpr std::size_t kLargeAllocationBytes = std::size_t{4} << 20;
 // large allocations to advise_large_allocation(). Returns false, and leaves
 // the mode off, when the variable holds anything else.
 bool set_huge_pages_from_environment();
+// The same for a program's main(): on a bad value, prints
+// "<program>: environment variable RTCSIM_HUGE_PAGES is '<value>': expected
+// off, on or auto" to stderr and returns false (the program exits with 2).
+bool set_huge_pages_from_environment(const char* program);
 void set_huge_pages(HugePages mode);
 
 // Advises [p, p + bytes) for huge pages (the 2 MB-aligned part of it) when
