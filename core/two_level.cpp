@@ -37,20 +37,20 @@ Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world
     return {blas, id, world_from_object, *inverse};
 }
 
-TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> instances,
+TwoLevel build_two_level(std::vector<Bvh> blases, std::size_t count,
+                         const std::function<Instance(std::size_t)>& instance,
                          const BuildOptions& tlas_options) {
-    for (std::size_t i = 0; i < instances.size(); ++i)
-        if (instances[i].blas >= blases.size())
-            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " +
-                                        std::to_string(instances[i].blas));
     const unsigned threads = tlas_options.threads > 0 ? static_cast<unsigned>(tlas_options.threads) : 0;
-    UninitializedVector<Aabb> boxes(instances.size());
-    parallel_for(instances.size(), threads, [&](std::size_t i, unsigned) {
-        const Aabb& root = blases[instances[i].blas].bounds();
+    UninitializedVector<Aabb> boxes(count);
+    parallel_for(count, threads, [&](std::size_t i, unsigned) {
+        const Instance in = instance(i);
+        if (in.blas >= blases.size())
+            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " + std::to_string(in.blas));
+        const Aabb& root = blases[in.blas].bounds();
         // An instance of an empty BLAS gets a point box: it is never entered
         // usefully but keeps instance indices and TLAS leaves one to one.
-        boxes[i] = root.empty() ? Aabb::from_point(instances[i].world_from_object.translation)
-                                : instances[i].world_from_object.box(root);
+        boxes[i] = root.empty() ? Aabb::from_point(in.world_from_object.translation)
+                                : in.world_from_object.box(root);
     });
     TwoLevel out{std::move(blases), {}, build_bvh(boxes, tlas_options)};
     // The instances in the TLAS's leaf order (and the leaves' primitive ids
@@ -58,14 +58,25 @@ TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> inst
     // to its tree neighbours' (docs/benchmark.md, issue 19 round 9: the head
     // frame's obb trace, 1 M instances, about 12 % faster). Indices are internal:
     // programs get the instance's id.
-    out.instances.resize(instances.size());
-    parallel_for(instances.size(), threads, [&](std::size_t k, unsigned) {
-        const Instance& in = instances[out.tlas.prim_ids[k]];
+    out.instances.resize(count);
+    parallel_for(count, threads, [&](std::size_t k, unsigned) {
+        const Instance in = instance(out.tlas.prim_ids[k]);
         out.instances[k] = {in.object_from_world, in.blas, in.id};
         out.tlas.prim_ids[k] = static_cast<std::uint32_t>(k);
     });
     out.lone_identity = has_lone_identity(out);
     return out;
+}
+
+TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> instances,
+                         const BuildOptions& tlas_options) {
+    // Checked in index order first, so that the error names the first bad instance.
+    for (std::size_t i = 0; i < instances.size(); ++i)
+        if (instances[i].blas >= blases.size())
+            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " +
+                                        std::to_string(instances[i].blas));
+    return build_two_level(std::move(blases), instances.size(),
+                           [instances](std::size_t i) { return instances[i]; }, tlas_options);
 }
 
 std::size_t TwoLevel::memory_bytes() const {

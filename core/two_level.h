@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -68,6 +69,16 @@ struct TwoLevel {
                                               const BuildOptions& tlas_options) {
     return build_two_level(std::move(blases), std::span<const Instance>(instances), tlas_options);
 }
+
+// The same TLAS over `count` instances that `instance(i)` makes, called twice
+// per instance from the build's threads (for its TLAS box, then in the TLAS's
+// leaf order), so that no array of every Instance is made: for the
+// masquerade's million instances that array was 104 MB of memory new to the
+// process (docs/benchmark.md, issue 19 round 11). `instance` must return the
+// same instance for the same i; it may throw (the build then rethrows).
+[[nodiscard]] TwoLevel build_two_level(std::vector<Bvh> blases, std::size_t count,
+                                       const std::function<Instance(std::size_t)>& instance,
+                                       const BuildOptions& tlas_options);
 
 // What a primitive program sees: which instance and primitive, the ray in both
 // spaces and the current closest distance.

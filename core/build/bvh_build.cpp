@@ -58,8 +58,7 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options) {
     bvh.root.count = BvhEntry::kInnerBit;  // empty root node
     const std::size_t n = boxes.size();
     bvh.prim_ids.resize(n);
-    const bvh_detail::BinaryTree tree =
-        bvh_detail::build_binary_tree(boxes, options, threads, bvh.prim_ids);
+    bvh_detail::BinaryTree tree = bvh_detail::build_binary_tree(boxes, options, threads, bvh.prim_ids);
     if (n == 0) return bvh;
     const bvh_detail::BinaryNodes& nodes = tree.nodes;
     const std::uint32_t root = tree.root;
@@ -103,6 +102,11 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options) {
             if (!nodes[kids[i]].is_leaf()) work.push_back({kids[i], first + i});
         }
     }
+    // The binary nodes are done with: freed before the lanes are allocated,
+    // their pages (2 n nodes, 64 MB per 1 M primitives) serve the lanes'
+    // 60 MB instead of pages new to the process (docs/benchmark.md, issue
+    // 19 round 11: on a VM a page new to the guest costs about 1.6 ms per MB).
+    bvh_detail::BinaryNodes().swap(tree.nodes);
     // The lane blocks the traversal reads, from the finished entries, on the
     // build's threads (per 1 M primitives: 40 ms on one thread, 23 ms on two,
     // about half of it the first touch of the blocks' 60 MB). Written inside

@@ -3,7 +3,6 @@
 // the unit box onto the primitive's OBB (+ one instance of the triangle BLAS).
 // The hardware's instance transform + unit-box test is then an OBB test, and
 // the program gets the world-space ray and the instance's primitive index.
-#include "core/parallel.h"
 #include "sim/methods/common/method_adapter.h"
 #include "sim/methods/common/two_level_method.h"
 
@@ -23,14 +22,15 @@ TwoLevelStructures build_obb(const std::vector<Prim>& prims, const Geometry& g, 
     std::vector<Bvh> blases;
     blases.push_back(build_bvh(std::vector<Aabb>{kUnitBox}, o.custom_blas));
     std::vector<BlasKind> kinds{BlasKind::Custom};
-    // One instance per primitive (each slot written by one task: deterministic).
-    UninitializedVector<Instance> instances = instance_slots(prims.size());
-    parallel_for(prims.size(), o.tlas.threads, [&](std::size_t i, unsigned) {
-        instances[i] = make_instance(0, static_cast<std::uint32_t>(i),
-                                     oriented_bounds(prims[i], o.obb).world_from_unit);
-    });
-    add_mesh_blas(g, o, blases, kinds, instances);
-    return {build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)};
+    // One instance per primitive, made where the TLAS build needs it (no
+    // array of them all; see build_two_level), then the mesh's.
+    const std::optional<Instance> mesh_instance = add_mesh_blas(g, o, blases, kinds);
+    const auto instance = [&](std::size_t i) {
+        if (i == prims.size()) return *mesh_instance;
+        return make_instance(0, static_cast<std::uint32_t>(i), oriented_bounds(prims[i], o.obb).world_from_unit);
+    };
+    return {build_two_level(std::move(blases), prims.size() + (mesh_instance ? 1 : 0), instance, o.tlas),
+            std::move(kinds)};
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -213,4 +214,44 @@ TEST_CASE("two-level: the lone identity instance's shortcut equals the instance 
                                 BuildOptions{}).lone_identity);
     CHECK_FALSE(build_two_level(blases, {make_instance(0, 0, Affine::translate({0, 0, 1e-7f}))},
                                 BuildOptions{}).lone_identity);
+}
+
+TEST_CASE("two-level: instances made on demand build what the same instances in an array build") {
+    Rng rng(7);
+    std::vector<Bvh> blases{build_bvh(std::vector<Aabb>{{Vec3(-0.5f), Vec3(0.5f)}}),
+                            build_bvh(std::vector<Aabb>{{Vec3(-1), Vec3(0.5f)}, {Vec3(0), Vec3(2)}})};
+    std::vector<Instance> instances;
+    for (std::uint32_t i = 0; i < 500; ++i) instances.push_back(make_instance(i % 7 == 0 ? 1 : 0, 1000 + i, random_affine(rng)));
+    BuildOptions o;
+    o.threads = 2;
+    const TwoLevel from_array = build_two_level(blases, instances, o);
+    std::vector<int> calls(instances.size(), 0);
+    std::mutex m;
+    const TwoLevel on_demand = build_two_level(blases, instances.size(), [&](std::size_t i) {
+        const std::lock_guard<std::mutex> lock(m);
+        ++calls[i];
+        return instances[i];
+    }, o);
+    // Twice per instance: its TLAS box, then its leaf slot.
+    CHECK(std::count(calls.begin(), calls.end(), 2) == static_cast<long>(instances.size()));
+    REQUIRE(on_demand.instances.size() == from_array.instances.size());
+    for (std::size_t k = 0; k < from_array.instances.size(); ++k) {  // field by field: a TlasInstance has padding
+        const TlasInstance &a = on_demand.instances[k], &b = from_array.instances[k];
+        CHECK(std::memcmp(&a.object_from_world, &b.object_from_world, sizeof(Affine)) == 0);
+        CHECK(a.blas == b.blas);
+        CHECK(a.id == b.id);
+    }
+    CHECK(on_demand.tlas.prim_ids == from_array.tlas.prim_ids);
+    REQUIRE(on_demand.tlas.entries.size() == from_array.tlas.entries.size());
+    CHECK(std::memcmp(on_demand.tlas.entries.data(), from_array.tlas.entries.data(),
+                      from_array.tlas.entries.size() * sizeof(BvhEntry)) == 0);
+    CHECK(on_demand.lone_identity == from_array.lone_identity);
+    // A maker that throws, and an instance of a BLAS that is not there, stop the build.
+    CHECK_THROWS_AS((void)build_two_level(blases, 3, [](std::size_t i) -> Instance {
+        if (i == 2) throw std::invalid_argument("instance 2: made badly");
+        return make_instance(0, 0, Affine{});
+    }, o), std::invalid_argument);
+    CHECK_THROWS_WITH_AS((void)build_two_level(blases, 3, [](std::size_t i) {
+        return make_instance(i == 1 ? 5 : 0, 0, Affine{});
+    }, o), "instance 1: no BLAS 5", std::invalid_argument);
 }

@@ -17,6 +17,15 @@ std::optional<Bvh> mesh_blas(const Geometry& g, const MethodOptions& o) {
     return build_bvh(boxes, o.triangle_blas);
 }
 
+std::optional<Instance> add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
+                                      std::vector<BlasKind>& kinds) {
+    std::optional<Bvh> mesh = mesh_blas(g, o);
+    if (!mesh) return std::nullopt;
+    blases.push_back(std::move(*mesh));
+    kinds.push_back(BlasKind::Triangles);
+    return make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{});
+}
+
 ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g, const MethodOptions& o) {
     std::vector<Bvh> blases;
     blases.push_back(std::move(tree.bvh));

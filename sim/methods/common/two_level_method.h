@@ -36,15 +36,16 @@ struct TwoLevelStructures {
 // The triangle BLAS over the mesh, if the geometry has one.
 [[nodiscard]] std::optional<Bvh> mesh_blas(const Geometry& g, const MethodOptions& o);
 
+// Appends the triangle BLAS (if the geometry has a mesh) and returns its
+// identity instance (none without a mesh).
+[[nodiscard]] std::optional<Instance> add_mesh_blas(const Geometry& g, const MethodOptions& o,
+                                                    std::vector<Bvh>& blases, std::vector<BlasKind>& kinds);
+
 // Appends the triangle BLAS (if the geometry has a mesh) and its identity instance.
 template <class Instances>
 void add_mesh_blas(const Geometry& g, const MethodOptions& o, std::vector<Bvh>& blases,
                    std::vector<BlasKind>& kinds, Instances& instances) {
-    std::optional<Bvh> mesh = mesh_blas(g, o);
-    if (!mesh) return;
-    blases.push_back(std::move(*mesh));
-    kinds.push_back(BlasKind::Triangles);
-    instances.push_back(make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{}));
+    if (std::optional<Instance> mesh = add_mesh_blas(g, o, blases, kinds)) instances.push_back(*mesh);
 }
 
 [[nodiscard]] StructureCounts count_two_level(const TwoLevelStructures& s);
