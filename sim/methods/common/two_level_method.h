@@ -26,11 +26,13 @@ struct TwoLevelStructures {
 };
 
 // `n` unconstructed instances (the caller writes every one, in parallel)
-// with room for add_mesh_blas's one more. Growing a vector of a million
-// instances by one element moves them all into a buffer twice as large
-// (104 MB copied and 208 MB of fresh pages: a quarter of the obb build's page
-// faults on configs/runs/head_1m.json), and constructing them first is a
-// serial pass over fresh pages.
+// with room for add_mesh_blas's one more, for methods that keep an array of
+// them (cluster; obb makes its instances on demand, see build_two_level).
+// Growing a vector of a million instances by one element moves them all into
+// a buffer twice as large (104 MB copied and 208 MB of fresh pages: a quarter
+// of the obb build's page faults on configs/runs/head_1m.json when obb still
+// kept the array), and constructing them first is a serial pass over fresh
+// pages.
 [[nodiscard]] UninitializedVector<Instance> instance_slots(std::size_t n);
 
 // The triangle BLAS over the mesh, if the geometry has one.
