@@ -105,7 +105,7 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options) {
     // The binary nodes are done with: freed before the lanes are allocated,
     // their pages (2 n nodes, 64 MB per 1 M primitives) serve the lanes'
     // 60 MB instead of pages new to the process (docs/benchmark.md, issue
-    // 19 round 11: on a VM a page new to the guest costs about 1.6 ms per MB).
+    // 19 round 11: on a VM a page new to the guest cost 1.4-1.9 ms per MB).
     bvh_detail::BinaryNodes().swap(tree.nodes);
     // The lane blocks the traversal reads, from the finished entries, on the
     // build's threads (per 1 M primitives: 40 ms on one thread, 23 ms on two,
