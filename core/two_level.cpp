@@ -27,6 +27,11 @@ bool has_lone_identity(const TwoLevel& s) {
            !detail::one_leaf(blas);
 }
 
+// The error of an instance whose BLAS index is past the BLASes.
+std::invalid_argument no_blas(std::size_t instance, std::uint32_t blas) {
+    return std::invalid_argument("instance " + std::to_string(instance) + ": no BLAS " + std::to_string(blas));
+}
+
 }  // namespace
 
 Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world_from_object) {
@@ -44,8 +49,7 @@ TwoLevel build_two_level(std::vector<Bvh> blases, std::size_t count,
     UninitializedVector<Aabb> boxes(count);
     parallel_for(count, threads, [&](std::size_t i, unsigned) {
         const Instance in = instance(i);
-        if (in.blas >= blases.size())
-            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " + std::to_string(in.blas));
+        if (in.blas >= blases.size()) throw no_blas(i, in.blas);
         const Aabb& root = blases[in.blas].bounds();
         // An instance of an empty BLAS gets a point box: it is never entered
         // usefully but keeps instance indices and TLAS leaves one to one.
@@ -72,9 +76,7 @@ TwoLevel build_two_level(std::vector<Bvh> blases, std::span<const Instance> inst
                          const BuildOptions& tlas_options) {
     // Checked in index order first, so that the error names the first bad instance.
     for (std::size_t i = 0; i < instances.size(); ++i)
-        if (instances[i].blas >= blases.size())
-            throw std::invalid_argument("instance " + std::to_string(i) + ": no BLAS " +
-                                        std::to_string(instances[i].blas));
+        if (instances[i].blas >= blases.size()) throw no_blas(i, instances[i].blas);
     return build_two_level(std::move(blases), instances.size(),
                            [instances](std::size_t i) { return instances[i]; }, tlas_options);
 }

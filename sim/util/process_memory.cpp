@@ -94,7 +94,7 @@ double fresh_memory_seconds(std::size_t bytes, bool huge_pages) noexcept {
 
 void set_huge_pages(HugePages mode) { g_mode.store(mode, std::memory_order_relaxed); }
 
-bool set_huge_pages_from_environment() {
+bool set_huge_pages_from_environment(const char* program) {
     const char* env = std::getenv("RTCSIM_HUGE_PAGES");
     HugePages mode = HugePages::Auto;
     if (env && *env) {
@@ -102,18 +102,14 @@ bool set_huge_pages_from_environment() {
         else if (std::strcmp(env, "on") == 0) mode = HugePages::On;
         else if (std::strcmp(env, "auto") != 0) {
             set_huge_pages(HugePages::Off);
+            if (program)
+                std::fprintf(stderr, "%s: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n",
+                             program, env);
             return false;
         }
     }
     set_huge_pages(mode);
     return true;
-}
-
-bool set_huge_pages_from_environment(const char* program) {
-    if (set_huge_pages_from_environment()) return true;
-    std::fprintf(stderr, "%s: environment variable RTCSIM_HUGE_PAGES is '%s': expected off, on or auto\n", program,
-                 std::getenv("RTCSIM_HUGE_PAGES"));
-    return false;
 }
 
 void advise_large_allocation(void* p, std::size_t bytes) noexcept {

@@ -38,12 +38,11 @@ inline constexpr std::size_t kLargeAllocationBytes = std::size_t{4} << 20;
 // RTCSIM_HUGE_PAGES (off, on or auto; auto when unset). Takes effect only in a
 // program linked with rtcsim_large_allocations, whose operator new reports
 // large allocations to advise_large_allocation(). Returns false, and leaves
-// the mode off, when the variable holds anything else.
-bool set_huge_pages_from_environment();
-// The same for a program's main(): on a bad value, prints
+// the mode off, when the variable holds anything else; with a `program` name
+// (a program's main(), which then exits with 2) it first prints
 // "<program>: environment variable RTCSIM_HUGE_PAGES is '<value>': expected
-// off, on or auto" to stderr and returns false (the program exits with 2).
-bool set_huge_pages_from_environment(const char* program);
+// off, on or auto" to stderr.
+bool set_huge_pages_from_environment(const char* program = nullptr);
 void set_huge_pages(HugePages mode);
 
 // Advises [p, p + bytes) for huge pages (the 2 MB-aligned part of it) when

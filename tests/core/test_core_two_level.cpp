@@ -246,6 +246,22 @@ TEST_CASE("two-level: instances made on demand build what the same instances in 
     CHECK(std::memcmp(on_demand.tlas.entries.data(), from_array.tlas.entries.data(),
                       from_array.tlas.entries.size() * sizeof(BvhEntry)) == 0);
     CHECK(on_demand.lone_identity == from_array.lone_identity);
+    // Both entry points share one implementation, so also against a TLAS built
+    // here: a BVH over the instances' world boxes, the instances in its leaf order.
+    std::vector<Aabb> world_boxes;
+    for (const Instance& in : instances) world_boxes.push_back(in.world_from_object.box(blases[in.blas].bounds()));
+    const Bvh expected = build_bvh(world_boxes, o);
+    REQUIRE(on_demand.tlas.entries.size() == expected.entries.size());
+    CHECK(std::memcmp(on_demand.tlas.entries.data(), expected.entries.data(),
+                      expected.entries.size() * sizeof(BvhEntry)) == 0);
+    for (std::size_t k = 0; k < expected.prim_ids.size(); ++k) {
+        const Instance& in = instances[expected.prim_ids[k]];
+        const TlasInstance& placed = on_demand.instances[k];
+        CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(Affine)) == 0);
+        CHECK(placed.blas == in.blas);
+        CHECK(placed.id == in.id);
+        CHECK(on_demand.tlas.prim_ids[k] == k);
+    }
     // A maker that throws, and an instance of a BLAS that is not there, stop the build.
     CHECK_THROWS_AS((void)build_two_level(blases, 3, [](std::size_t i) -> Instance {
         if (i == 2) throw std::invalid_argument("instance 2: made badly");
