@@ -14,6 +14,7 @@
 // by r at both ends, half-width r across; Tight == Paper.
 #pragma once
 
+#include "core/box_lanes.h"
 #include "core/events.h"
 #include "core/obb.h"
 #include "intersectors/frame.h"
@@ -21,7 +22,12 @@
 #include "intersectors/kinds.h"
 #include "intersectors/span.h"
 
+#include <cstddef>
 #include <optional>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace rtc {
 
@@ -74,6 +80,149 @@ namespace detail {
     return Hit{hit.t, normal, static_cast<float>(u)};
 }
 
+// The numbers the capsule's cheap rejects and its hit are made of, in double:
+// the capsule around its centre c and the ray relative to it.
+struct CapsuleFrame {
+    DVec3 a;          // p0 - c
+    DVec3 ba;         // p1 - p0
+    DVec3 d;          // the ray's direction
+    DVec3 oc;         // the ray's origin - c
+    double len2, dd;  // ba.ba, d.d
+    double od, oo;    // oc.d, oc.oc
+    double nn, on;    // n.n, oc.n with n = d x ba
+};
+
+// With glm, one component at a time: the reference the lanes version below
+// must match bit for bit (tests/intersectors/test_intersect_straight.cpp).
+[[nodiscard]] inline CapsuleFrame capsule_frame_scalar(const Capsule& cap, const Ray& ray) {
+    const DVec3 p0(cap.p0), p1(cap.p1);
+    const DVec3 c = 0.5 * (p0 + p1);
+    CapsuleFrame f;
+    f.a = p0 - c;
+    f.ba = p1 - p0;
+    f.d = DVec3(ray.direction);
+    f.oc = DVec3(ray.origin) - c;
+    f.len2 = glm::dot(f.ba, f.ba);
+    f.dd = glm::dot(f.d, f.d);
+    f.od = glm::dot(f.oc, f.d);
+    f.oo = glm::dot(f.oc, f.oc);
+    const DVec3 n = glm::cross(f.d, f.ba);
+    f.nn = glm::dot(n, n);
+    f.on = glm::dot(f.oc, n);
+    return f;
+}
+
+#if defined(__AVX2__)
+// capsule_frame_scalar's operations on (x, y, z) lanes of 256-bit vectors:
+// each sum, difference and product is the scalar one, and each dot product
+// adds its three products in glm's order, (x + y) + z, so every field is bit
+// for bit the scalar one (no fused multiply-add: CMakeLists.txt). Six dot
+// products by two transposes instead of one component at a time: the rejects
+// are most of a capsule program's instructions (case 1 ref: 83 programs per
+// ray, nearly all rejected).
+struct CapsuleLanes {
+    __m256d a, ba, d, oc;
+    double len2, dd, od, oo, nn, on;
+};
+
+// capsule_hit from the lanes: a call of its own that takes the vectors in
+// registers, so that the rejects' path keeps no 32-byte vector in memory
+// (as an aligned stack slot it cost every call a realigned frame).
+[[gnu::noinline]] inline std::optional<Hit> capsule_hit_lanes(const Ray& ray, __m256d a, __m256d ba, __m256d d,
+                                                             __m256d oc, double dd, double od, double len2,
+                                                             double r) {
+    const auto vec = [](__m256d v) {
+        double x[4];
+        _mm256_storeu_pd(x, v);
+        return DVec3(x[0], x[1], x[2]);
+    };
+    return capsule_hit(ray, local_ray(vec(d), vec(oc), dd, od), vec(a), vec(ba), len2, r);
+}
+
+[[nodiscard, gnu::always_inline]] inline CapsuleLanes capsule_frame_lanes(const Capsule& cap, const Ray& ray) {
+    // One 16-byte load per point: each Vec3 read here is followed in its
+    // struct by a fourth float (p1, radius, tmin, tmax), which lands in lane
+    // 3, a lane no sum, test or stored vector uses.
+    static_assert(offsetof(Capsule, p1) == 12 && offsetof(Capsule, radius) == 24);
+    static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, tmax) == 28);
+    const auto widen = [](const Vec3& v) { return _mm256_cvtps_pd(_mm_loadu_ps(&v.x)); };
+    // The sums of lanes 0-2 of p, q, r and s: (x + y) + z of each.
+    const auto sums4 = [](__m256d p, __m256d q, __m256d r, __m256d s) {
+        const __m256d xz_pq = _mm256_unpacklo_pd(p, q), yw_pq = _mm256_unpackhi_pd(p, q);
+        const __m256d xz_rs = _mm256_unpacklo_pd(r, s), yw_rs = _mm256_unpackhi_pd(r, s);
+        const __m256d x = _mm256_permute2f128_pd(xz_pq, xz_rs, 0x20), y = _mm256_permute2f128_pd(yw_pq, yw_rs, 0x20);
+        const __m256d z = _mm256_permute2f128_pd(xz_pq, xz_rs, 0x31);
+        return _mm256_add_pd(_mm256_add_pd(x, y), z);
+    };
+    const auto sums2 = [](__m256d p, __m256d q) {
+        const __m256d xz = _mm256_unpacklo_pd(p, q), yw = _mm256_unpackhi_pd(p, q);
+        return _mm_add_pd(_mm_add_pd(_mm256_castpd256_pd128(xz), _mm256_castpd256_pd128(yw)),
+                          _mm256_extractf128_pd(xz, 1));
+    };
+    const auto high = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
+    CapsuleLanes f;
+    const __m256d p0 = widen(cap.p0), p1 = widen(cap.p1);
+    const __m256d c = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_add_pd(p0, p1));
+    f.a = _mm256_sub_pd(p0, c);
+    f.ba = _mm256_sub_pd(p1, p0);
+    f.d = widen(ray.direction);
+    f.oc = _mm256_sub_pd(widen(ray.origin), c);
+    // n = d x ba = d.yzx ba.zxy - ba.yzx d.zxy, glm::cross's products and order.
+    const auto yzx = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 0, 2, 1)); };
+    const auto zxy = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 1, 0, 2)); };
+    const __m256d n = _mm256_sub_pd(_mm256_mul_pd(yzx(f.d), zxy(f.ba)), _mm256_mul_pd(yzx(f.ba), zxy(f.d)));
+    const __m256d s = sums4(_mm256_mul_pd(f.ba, f.ba), _mm256_mul_pd(f.d, f.d), _mm256_mul_pd(f.oc, f.d),
+                            _mm256_mul_pd(f.oc, f.oc));
+    const __m128d t = sums2(_mm256_mul_pd(n, n), _mm256_mul_pd(f.oc, n));
+    const __m128d s_lo = _mm256_castpd256_pd128(s), s_hi = _mm256_extractf128_pd(s, 1);
+    f.len2 = _mm_cvtsd_f64(s_lo);
+    f.dd = high(s_lo);
+    f.od = _mm_cvtsd_f64(s_hi);
+    f.oo = high(s_hi);
+    f.nn = _mm_cvtsd_f64(t);
+    f.on = high(t);
+    return f;
+}
+#endif
+
+[[nodiscard, gnu::always_inline]] inline auto capsule_frame(const Capsule& cap, const Ray& ray) {
+#if defined(__AVX2__)
+    return capsule_frame_lanes(cap, ray);
+#else
+    return capsule_frame_scalar(cap, ray);
+#endif
+}
+
+[[nodiscard, gnu::always_inline]] inline std::optional<Hit> capsule_hit(const Ray& ray, const CapsuleFrame& f,
+                                                                     double r) {
+    return capsule_hit(ray, local_ray(f.d, f.oc, f.dd, f.od), f.a, f.ba, f.len2, r);
+}
+#if defined(__AVX2__)
+[[nodiscard, gnu::always_inline]] inline std::optional<Hit> capsule_hit(const Ray& ray, const CapsuleLanes& f,
+                                                                     double r) {
+    return capsule_hit_lanes(ray, f.a, f.ba, f.d, f.oc, f.dd, f.od, f.len2, r);
+}
+#endif
+
+// Cheap rejects without a division or square root (most calls miss).
+// 1. The ray line's squared distance to the centre times |d|^2 is
+//    |oc|^2 |d|^2 - (oc.d)^2; the capsule lies within L/2 + r of the centre,
+//    and (L/2 + r)^2 <= 2 (L^2/4 + r^2) avoids the square root of L^2.
+// 2. Long thin capsules pass the sphere test for most rays: reject too when
+//    the ray's line stays farther than r from the axis line (the capsule lies
+//    within the infinite cylinder of radius r around it): |oc.n| / |n| > r
+//    with n = d x ba. Only when the angle between them is not tiny
+//    (sin^2 > 1e-6), so the error of oc.n is below ~1e-12 |oc| |n|; the
+//    threshold adds 2e-6 r^2 and 1e-16 |oc|^2 (as (a + b)^2 <= (1 + k) a^2 +
+//    (1 + 1/k) b^2 with k = 1e-6), so it only rejects rays the exact test
+//    misses by far more than rounding.
+template <class Frame>
+[[nodiscard, gnu::always_inline]] inline bool capsule_rejects(const Frame& f, double r) {
+    const double reach2 = 2.0 * (0.25 * f.len2 + r * r);
+    if (!(f.dd > 0.0) || !(f.oo * f.dd - f.od * f.od <= reach2 * f.dd)) return true;
+    return f.nn > 1e-6 * f.dd * f.len2 && f.on * f.on > f.nn * (r * r * (1.0 + 2e-6) + 1e-16 * f.oo);
+}
+
 }  // namespace detail
 
 template <class Sink>
@@ -81,34 +230,9 @@ template <class Sink>
     sink.on(Event::IsCapsule);
     const double r = cap.radius;
     if (!(r > 0.0)) return std::nullopt;  // zero radius: no surface (and NaN lands here)
-    const DVec3 p0(cap.p0), p1(cap.p1);
-    const DVec3 c = 0.5 * (p0 + p1);
-    const DVec3 a = p0 - c, ba = p1 - p0;
-    const double len2 = glm::dot(ba, ba);
-    // Cheap reject without a division or square root (most calls miss): the
-    // ray line's squared distance to the centre times |d|^2 is
-    // |oc|^2 |d|^2 - (oc.d)^2; the capsule lies within L/2 + r of the centre,
-    // and (L/2 + r)^2 <= 2 (L^2/4 + r^2) avoids the square root of L^2.
-    const DVec3 d(ray.direction), oc = DVec3(ray.origin) - c;
-    const double dd = glm::dot(d, d), od = glm::dot(oc, d);
-    {
-        const double reach2 = 2.0 * (0.25 * len2 + r * r);
-        const double oo = glm::dot(oc, oc);
-        if (!(dd > 0.0) || !(oo * dd - od * od <= reach2 * dd)) return std::nullopt;
-        // Long thin capsules pass the sphere test above for most rays: reject
-        // too when the ray's line stays farther than r from the axis line (the
-        // capsule lies within the infinite cylinder of radius r around it):
-        // |oc.n| / |n| > r with n = d x ba. Only when the angle between them
-        // is not tiny (sin^2 > 1e-6), so the error of oc.n is below ~1e-12
-        // |oc| |n|; the threshold adds 2e-6 r^2 and 1e-16 |oc|^2 (as
-        // (a + b)^2 <= (1 + k) a^2 + (1 + 1/k) b^2 with k = 1e-6), so it only
-        // rejects rays the exact test misses by far more than rounding.
-        const DVec3 n = glm::cross(d, ba);
-        const double nn = glm::dot(n, n), on = glm::dot(oc, n);
-        if (nn > 1e-6 * dd * len2 && on * on > nn * (r * r * (1.0 + 2e-6) + 1e-16 * oo))
-            return std::nullopt;
-    }
-    return detail::capsule_hit(ray, local_ray(d, oc, dd, od), a, ba, len2, r);
+    const auto f = detail::capsule_frame(cap, ray);
+    if (detail::capsule_rejects(f, r)) return std::nullopt;
+    return detail::capsule_hit(ray, f, r);
 }
 
 }  // namespace rtc

@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include <cstring>
+
 using namespace rtc;
 
 namespace {
@@ -207,3 +209,88 @@ TEST_CASE("intersect capsule/cylinder: t does not depend on tmax") {
     }
     CHECK(hits > 500);
 }
+
+#if defined(__AVX2__)
+namespace {
+
+// Equal bit for bit, or both NaN (a NaN's payload may follow operand order).
+bool same(double a, double b) {
+    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+}
+bool same(const DVec3& a, const DVec3& b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
+
+DVec3 lanes_vector(__m256d v) {
+    double x[4];
+    _mm256_storeu_pd(x, v);
+    return {x[0], x[1], x[2]};
+}
+
+// Any float: mostly ordinary values, sometimes a random bit pattern (NaN,
+// infinities, subnormals, huge), sometimes a signed zero.
+float any_float(std::mt19937& rng) {
+    switch (rng() % 8) {
+    case 0: {
+        const std::uint32_t bits = rng();
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+    }
+    case 1: return (rng() & 1) ? 0.0f : -0.0f;
+    default: return test::uniform(rng, -3.0f, 3.0f);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("intersect capsule: the cheap rejects on AVX2 lanes are the scalar ones, bit for bit") {
+    std::mt19937 rng(20261126);
+    NullSink sink;
+    int compared = 0, rejected = 0, hits = 0;
+    const auto check = [&](const Capsule& cap, const Ray& ray) {
+        const detail::CapsuleFrame s = detail::capsule_frame_scalar(cap, ray);
+        const detail::CapsuleLanes l = detail::capsule_frame_lanes(cap, ray);
+        CAPTURE(cap.p0);
+        CAPTURE(cap.p1);
+        CAPTURE(ray.origin);
+        CAPTURE(ray.direction);
+        REQUIRE(same(s.a, lanes_vector(l.a)));
+        REQUIRE(same(s.ba, lanes_vector(l.ba)));
+        REQUIRE(same(s.d, lanes_vector(l.d)));
+        REQUIRE(same(s.oc, lanes_vector(l.oc)));
+        REQUIRE(same(s.len2, l.len2));
+        REQUIRE(same(s.dd, l.dd));
+        REQUIRE(same(s.od, l.od));
+        REQUIRE(same(s.oo, l.oo));
+        REQUIRE(same(s.nn, l.nn));
+        REQUIRE(same(s.on, l.on));
+        // And intersect(), which takes the lanes, answers as the scalar
+        // frame's rejects and hit do.
+        const double r = cap.radius;
+        std::optional<Hit> expected;
+        if (r > 0.0 && !detail::capsule_rejects(s, r)) expected = detail::capsule_hit(ray, s, r);
+        const auto got = intersect(cap, ray, sink);
+        REQUIRE(got.has_value() == expected.has_value());
+        if (got) {
+            CHECK(std::memcmp(&got->t, &expected->t, sizeof got->t) == 0);
+            CHECK(got->normal == expected->normal);
+            ++hits;
+        }
+        rejected += r > 0.0 && detail::capsule_rejects(s, r);
+        ++compared;
+    };
+    for (int i = 0; i < 20000; ++i) {
+        const RandomSegment s = random_segment(rng, 1e4f);
+        check({s.p0, s.p1, s.r}, random_ray_at(rng, s));
+        const Capsule odd{{any_float(rng), any_float(rng), any_float(rng)},
+                          {any_float(rng), any_float(rng), any_float(rng)},
+                          std::abs(any_float(rng))};
+        const Ray ray{{any_float(rng), any_float(rng), any_float(rng)}, 0.0f,
+                      {any_float(rng), any_float(rng), any_float(rng)}, kInfinity};
+        check(odd, ray);
+        check({odd.p0, odd.p0, odd.radius}, ray);  // zero length
+    }
+    CHECK(compared == 60000);
+    CHECK(hits > 2000);      // the sample reaches the hit test
+    CHECK(rejected > 2000);  // and the rejects
+}
+#endif
