@@ -7,7 +7,8 @@
 
 #include <doctest/doctest.h>
 
-#include <cstring>
+#include <bit>
+#include <cstdint>
 
 using namespace rtc;
 
@@ -215,7 +216,7 @@ namespace {
 
 // Equal bit for bit, or both NaN (a NaN's payload may follow operand order).
 bool same(double a, double b) {
-    return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+    return (std::isnan(a) && std::isnan(b)) || std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 bool same(const DVec3& a, const DVec3& b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
 
@@ -229,12 +230,7 @@ DVec3 lanes_vector(__m256d v) {
 // infinities, subnormals, huge), sometimes a signed zero.
 float any_float(std::mt19937& rng) {
     switch (rng() % 8) {
-    case 0: {
-        const std::uint32_t bits = rng();
-        float f;
-        std::memcpy(&f, &bits, sizeof f);
-        return f;
-    }
+    case 0: return std::bit_cast<float>(static_cast<std::uint32_t>(rng()));
     case 1: return (rng() & 1) ? 0.0f : -0.0f;
     default: return test::uniform(rng, -3.0f, 3.0f);
     }
@@ -271,7 +267,7 @@ TEST_CASE("intersect capsule: the cheap rejects on AVX2 lanes are the scalar one
         const auto got = intersect(cap, ray, sink);
         REQUIRE(got.has_value() == expected.has_value());
         if (got) {
-            CHECK(std::memcmp(&got->t, &expected->t, sizeof got->t) == 0);
+            CHECK(std::bit_cast<std::uint32_t>(got->t) == std::bit_cast<std::uint32_t>(expected->t));
             CHECK(got->normal == expected->normal);
             ++hits;
         }
