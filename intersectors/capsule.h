@@ -89,7 +89,12 @@ struct CapsuleFrame {
     DVec3 oc;         // the ray's origin - c
     double len2, dd;  // ba.ba, d.d
     double od, oo;    // oc.d, oc.oc
-    double nn, on;    // n.n, oc.n with n = d x ba
+};
+
+// The second reject's numbers, n.n and oc.n with n = d x ba: made only for
+// the calls the first reject passes.
+struct CapsuleAxis {
+    double nn, on;
 };
 
 // With glm, one component at a time: the reference the lanes version below
@@ -106,10 +111,12 @@ struct CapsuleFrame {
     f.dd = glm::dot(f.d, f.d);
     f.od = glm::dot(f.oc, f.d);
     f.oo = glm::dot(f.oc, f.oc);
-    const DVec3 n = glm::cross(f.d, f.ba);
-    f.nn = glm::dot(n, n);
-    f.on = glm::dot(f.oc, n);
     return f;
+}
+
+[[nodiscard]] inline CapsuleAxis capsule_axis(const CapsuleFrame& f) {
+    const DVec3 n = glm::cross(f.d, f.ba);
+    return {glm::dot(n, n), glm::dot(f.oc, n)};
 }
 
 #if defined(__AVX2__)
@@ -122,8 +129,15 @@ struct CapsuleFrame {
 // ray, nearly all rejected).
 struct CapsuleLanes {
     __m256d a, ba, d, oc;
-    double len2, dd, od, oo, nn, on;
+    double len2, dd, od, oo;
 };
+
+// Lanes 0-2 of v.
+[[nodiscard, gnu::always_inline]] inline DVec3 to_dvec3(__m256d v) {
+    double x[4];
+    _mm256_storeu_pd(x, v);
+    return {x[0], x[1], x[2]};
+}
 
 // capsule_hit from the lanes: a call of its own that takes the vectors in
 // registers, so that the rejects' path keeps no 32-byte vector in memory
@@ -131,12 +145,7 @@ struct CapsuleLanes {
 [[gnu::noinline]] inline std::optional<Hit> capsule_hit_lanes(const Ray& ray, __m256d a, __m256d ba, __m256d d,
                                                              __m256d oc, double dd, double od, double len2,
                                                              double r) {
-    const auto vec = [](__m256d v) {
-        double x[4];
-        _mm256_storeu_pd(x, v);
-        return DVec3(x[0], x[1], x[2]);
-    };
-    return capsule_hit(ray, local_ray(vec(d), vec(oc), dd, od), vec(a), vec(ba), len2, r);
+    return capsule_hit(ray, local_ray(to_dvec3(d), to_dvec3(oc), dd, od), to_dvec3(a), to_dvec3(ba), len2, r);
 }
 
 [[nodiscard, gnu::always_inline]] inline CapsuleLanes capsule_frame_lanes(const Capsule& cap, const Ray& ray) {
@@ -157,11 +166,6 @@ struct CapsuleLanes {
         const __m256d z = _mm256_permute2f128_pd(xz_pq, xz_rs, 0x31);
         return _mm256_add_pd(_mm256_add_pd(x, y), z);
     };
-    const auto sums2 = [](__m256d p, __m256d q) {
-        const __m256d xz = _mm256_unpacklo_pd(p, q), yw = _mm256_unpackhi_pd(p, q);
-        return _mm_add_pd(_mm_add_pd(_mm256_castpd256_pd128(xz), _mm256_castpd256_pd128(yw)),
-                          _mm256_extractf128_pd(xz, 1));
-    };
     const auto high = [](__m128d v) { return _mm_cvtsd_f64(_mm_unpackhi_pd(v, v)); };
     CapsuleLanes f;
     const __m256d p0 = widen(cap.p0), p1 = widen(cap.p1);
@@ -170,21 +174,27 @@ struct CapsuleLanes {
     f.ba = _mm256_sub_pd(p1, p0);
     f.d = widen_ray(ray.direction);
     f.oc = _mm256_sub_pd(widen_ray(ray.origin), c);
-    // n = d x ba = d.yzx ba.zxy - ba.yzx d.zxy, glm::cross's products and order.
-    const auto yzx = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 0, 2, 1)); };
-    const auto zxy = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 1, 0, 2)); };
-    const __m256d n = _mm256_sub_pd(_mm256_mul_pd(yzx(f.d), zxy(f.ba)), _mm256_mul_pd(yzx(f.ba), zxy(f.d)));
     const __m256d s = sums4(_mm256_mul_pd(f.ba, f.ba), _mm256_mul_pd(f.d, f.d), _mm256_mul_pd(f.oc, f.d),
                             _mm256_mul_pd(f.oc, f.oc));
-    const __m128d t = sums2(_mm256_mul_pd(n, n), _mm256_mul_pd(f.oc, n));
     const __m128d s_lo = _mm256_castpd256_pd128(s), s_hi = _mm256_extractf128_pd(s, 1);
     f.len2 = _mm_cvtsd_f64(s_lo);
     f.dd = high(s_lo);
     f.od = _mm_cvtsd_f64(s_hi);
     f.oo = high(s_hi);
-    f.nn = _mm_cvtsd_f64(t);
-    f.on = high(t);
     return f;
+}
+
+[[nodiscard, gnu::always_inline]] inline CapsuleAxis capsule_axis(const CapsuleLanes& f) {
+    // n = d x ba = d.yzx ba.zxy - ba.yzx d.zxy, glm::cross's products and order.
+    const auto yzx = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 0, 2, 1)); };
+    const auto zxy = [](__m256d v) { return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 1, 0, 2)); };
+    const __m256d n = _mm256_sub_pd(_mm256_mul_pd(yzx(f.d), zxy(f.ba)), _mm256_mul_pd(yzx(f.ba), zxy(f.d)));
+    // (x + y) + z of n.n and of oc.n.
+    const __m256d nn = _mm256_mul_pd(n, n), on = _mm256_mul_pd(f.oc, n);
+    const __m256d xz = _mm256_unpacklo_pd(nn, on), yw = _mm256_unpackhi_pd(nn, on);
+    const __m128d t = _mm_add_pd(_mm_add_pd(_mm256_castpd256_pd128(xz), _mm256_castpd256_pd128(yw)),
+                                 _mm256_extractf128_pd(xz, 1));
+    return {_mm_cvtsd_f64(t), _mm_cvtsd_f64(_mm_unpackhi_pd(t, t))};
 }
 #endif
 
@@ -223,7 +233,8 @@ template <class Frame>
 [[nodiscard, gnu::always_inline]] inline bool capsule_rejects(const Frame& f, double r) {
     const double reach2 = 2.0 * (0.25 * f.len2 + r * r);
     if (!(f.dd > 0.0) || !(f.oo * f.dd - f.od * f.od <= reach2 * f.dd)) return true;
-    return f.nn > 1e-6 * f.dd * f.len2 && f.on * f.on > f.nn * (r * r * (1.0 + 2e-6) + 1e-16 * f.oo);
+    const CapsuleAxis x = capsule_axis(f);
+    return x.nn > 1e-6 * f.dd * f.len2 && x.on * x.on > x.nn * (r * r * (1.0 + 2e-6) + 1e-16 * f.oo);
 }
 
 }  // namespace detail
