@@ -30,11 +30,17 @@ for b in "$bin_a" "$bin_b"; do
     [ -x "$b" ] || { echo "head_frame_pairs: $b is not an executable" >&2; exit 2; }
 done
 case $pairs in '' | *[!0-9]* | 0) echo "head_frame_pairs: PAIRS must be a positive integer, got '$pairs'" >&2; exit 2 ;; esac
+base_seconds=${BASE_SECONDS:-6.6}
+if [[ ! $base_seconds =~ ^[0-9]+([.][0-9]+)?$ || $base_seconds =~ ^0+([.]0+)?$ ]]; then
+    echo "head_frame_pairs: BASE_SECONDS must be a positive number of seconds, got '$base_seconds'" >&2
+    exit 2
+fi
 here=$(cd "$(dirname "$0")/../.." && pwd)
 config_for() {  # the config of the binary's own checkout when it has one
     local cache src
     cache="$(dirname "$1")/CMakeCache.txt"
-    src=$( [ -f "$cache" ] && sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$cache" || true)
+    src=""
+    if [ -f "$cache" ]; then src=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$cache"); fi
     if [ -n "$src" ] && [ -f "$src/configs/runs/head_1m.json" ]; then echo "$src/configs/runs/head_1m.json"
     else echo "$here/configs/runs/head_1m.json"; fi
 }
@@ -56,7 +62,7 @@ PY
         tail -n 1 "$out/runs.txt" | awk '{printf "pair %s %s  builds+traces %6.2f s  total %6.2f s  wall %6.2f s\n", $2, $1, $3, $4, $5}'
     done
 done
-python3 - "$out/runs.txt" "${BASE_SECONDS:-6.6}" <<'PY'
+python3 - "$out/runs.txt" "$base_seconds" <<'PY'
 import statistics, sys
 rows = [line.split() for line in open(sys.argv[1])]
 base = float(sys.argv[2])
