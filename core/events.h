@@ -41,6 +41,14 @@ enum class Event : std::uint8_t {
     LssTest,             // hardware ray/linear-swept-sphere test in the RT unit (Blackwell)
     ObbBoxTest,          // hardware test of one oriented child box (own 3x4 transform, Woop et al. 2014)
     NodeRotate,          // the ray is rotated once for a node whose children share a rotation (RDNA4)
+    // What an intersection program executed, by operation class (core/ops.h),
+    // counted on the path each call took: a calibrated preset prices these,
+    // not the programs by name.
+    OpFma,               // FP32 add, multiply, fused multiply-add, min/max/abs
+    OpDiv,               // a division (or reciprocal)
+    OpSqrt,              // a square root or reciprocal square root
+    OpBranch,            // a compare-and-branch (a test that can end the call or pick a path)
+    OpLoad,              // a 16-byte load of primitive data
     Count
 };
 
@@ -54,6 +62,8 @@ inline constexpr std::array<std::string_view, kEventCount> kEventNames = {
     "phantom_early_reject", "phantom_bracket_test", "phantom_cylinder_test",
     "phantom_paper_iteration", "phantom_second_end", "reported_hit", "leaf_obb_test",
     "lss_test",      "obb_box_test",      "node_rotate",
+    "op_fma",        "op_div",            "op_sqrt",              "op_branch",
+    "op_load",
 };
 
 static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNames");
@@ -94,9 +104,27 @@ inline constexpr EventUnit kEventUnits[] = {
     EventUnit::RtUnit,   // lss_test
     EventUnit::RtUnit,   // obb_box_test
     EventUnit::RtUnit,   // node_rotate
+    EventUnit::Program,  // op_fma
+    EventUnit::Program,  // op_div
+    EventUnit::Program,  // op_sqrt
+    EventUnit::Program,  // op_branch
+    EventUnit::Program,  // op_load
 };
 
 static_assert(std::size(kEventUnits) == kEventCount, "every Event needs a unit in kEventUnits");
+
+// How a preset prices intersection programs: either by name (a cost per
+// program event, the first version's guesses) or by what they executed (a
+// cost per operation class, so a cheap early reject is cheap and phantom
+// iterations add up). A preset prices exactly one of these two groups; the
+// other group's events are still counted (calls per kind, iterations) but
+// cost nothing under it.
+[[nodiscard]] constexpr bool is_operation_event(Event e) {
+    return e >= Event::OpFma && e <= Event::OpLoad;
+}
+[[nodiscard]] constexpr bool is_program_name_event(Event e) {
+    return (e >= Event::IsCylinder && e <= Event::PhantomSecondEnd) || e == Event::LeafObbTest;
+}
 
 [[nodiscard]] constexpr EventUnit event_unit(Event e) {
     return kEventUnits[static_cast<std::size_t>(e)];

@@ -17,6 +17,7 @@
 #include "core/box_lanes.h"
 #include "core/events.h"
 #include "core/obb.h"
+#include "core/ops.h"
 #include "intersectors/frame.h"
 #include "intersectors/hit.h"
 #include "intersectors/kinds.h"
@@ -229,13 +230,42 @@ struct CapsuleLanes {
 //    threshold adds 2e-6 r^2 and 1e-16 |oc|^2 (as (a + b)^2 <= (1 + k) a^2 +
 //    (1 + 1/k) b^2 with k = 1e-6), so it only rejects rays the exact test
 //    misses by far more than rounding.
+// Which of the two rejects ends the call: 0 none (the ray may hit), 1 the
+// sphere test, 2 the axis test.
+template <class Frame>
+[[nodiscard, gnu::always_inline]] inline int capsule_reject_by(const Frame& f, double r) {
+    const double reach2 = 2.0 * (0.25 * f.len2 + r * r);
+    if (!(f.dd > 0.0) || !(f.oo * f.dd - f.od * f.od <= reach2 * f.dd)) return 1;
+    const CapsuleAxis x = capsule_axis(f);
+    return x.nn > 1e-6 * f.dd * f.len2 && x.on * x.on > x.nn * (r * r * (1.0 + 2e-6) + 1e-16 * f.oo) ? 2 : 0;
+}
+
 template <class Frame>
 [[nodiscard, gnu::always_inline]] inline bool capsule_rejects(const Frame& f, double r) {
-    const double reach2 = 2.0 * (0.25 * f.len2 + r * r);
-    if (!(f.dd > 0.0) || !(f.oo * f.dd - f.od * f.od <= reach2 * f.dd)) return true;
-    const CapsuleAxis x = capsule_axis(f);
-    return x.nn > 1e-6 * f.dd * f.len2 && x.on * x.on > x.nn * (r * r * (1.0 + 2e-6) + 1e-16 * f.oo);
+    return capsule_reject_by(f, r) != 0;
 }
+
+// The capsule program's operations per path (conventions: core/ops.h).
+// Entry: the capsule's 28 B (2 loads), the radius test.
+inline constexpr Ops kCapsuleEntry{.branch = 1, .load = 2};
+// The frame: c = (p0 + p1) / 2 (6), a, ba, oc (9), len2, dd, od, oo (12); the
+// sphere reject: reach2 (3), d.d > 0, |oc|^2 |d|^2 - (oc.d)^2 (2), reach2 |d|^2
+// (1), the compare.
+inline constexpr Ops kCapsuleSphereReject = kCapsuleEntry + Ops{.fma = 33, .branch = 2};
+// The axis reject: n = d x ba (6), n.n and oc.n (6), the angle test (2, a
+// compare), (oc.n)^2 (1), the threshold (3) times n.n (1), the compare.
+inline constexpr Ops kCapsuleAxisReject = kCapsuleSphereReject + Ops{.fma = 19, .branch = 2};
+// The solve: the local ray (t0 a division and a branch, o 3); two end spheres
+// (each: o - m 3, s_mid 3 and a division, perp 3, h 4, a branch, the half
+// width a division and a sqrt, both ends 2) and their hull (2); the body
+// (len a sqrt, w a reciprocal and 3, o - a 3, the infinite cylinder's span 31
+// with 2 divisions, a sqrt and 2 branches, the slab's 8 with 2 divisions and
+// 2 branches, overlap and hull 4, a branch on len2); the pick (1, 3 branches).
+inline constexpr Ops kCapsuleSolved = kCapsuleAxisReject + Ops{.fma = 85, .div = 10, .sqrt = 4, .branch = 11};
+// A hit adds: the point (3), u = (p - a).ba / len2 (6 and a division),
+// its clamp (2), n = p - (a + u ba) (6), n.n (3) and a branch, the normal's
+// normalisation (a sqrt, a reciprocal, 3).
+inline constexpr Ops kCapsuleHit = kCapsuleSolved + Ops{.fma = 23, .div = 2, .sqrt = 1, .branch = 1};
 
 }  // namespace detail
 
@@ -243,10 +273,18 @@ template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const Capsule& cap, const Ray& ray, Sink& sink) {
     sink.on(Event::IsCapsule);
     const double r = cap.radius;
-    if (!(r > 0.0)) return std::nullopt;  // zero radius: no surface (and NaN lands here)
+    if (!(r > 0.0)) {  // zero radius: no surface (and NaN lands here)
+        count_ops(sink, detail::kCapsuleEntry);
+        return std::nullopt;
+    }
     const auto f = detail::capsule_frame(cap, ray);
-    if (detail::capsule_rejects(f, r)) return std::nullopt;
-    return detail::capsule_hit(ray, f, r);
+    if (const int by = detail::capsule_reject_by(f, r)) {
+        count_ops(sink, by == 1 ? detail::kCapsuleSphereReject : detail::kCapsuleAxisReject);
+        return std::nullopt;
+    }
+    auto hit = detail::capsule_hit(ray, f, r);
+    count_ops(sink, hit ? detail::kCapsuleHit : detail::kCapsuleSolved);
+    return hit;
 }
 
 }  // namespace rtc

@@ -15,6 +15,7 @@
 
 #include "core/events.h"
 #include "core/obb.h"
+#include "core/ops.h"
 #include "intersectors/frame.h"
 #include "intersectors/hit.h"
 #include "intersectors/kinds.h"
@@ -50,20 +51,46 @@ struct Cylinder {
     return segment_obb(c.p0, c.p1, std::max(c.radius, 0.0f), 0.0f);
 }
 
+// The cylinder program's operations per path (conventions: core/ops.h).
+// Entry: the cylinder's 28 B (2 loads), the radius test, ba (3), len2 (3)
+// and its test.
+inline constexpr Ops kCylinderEntry{.fma = 6, .branch = 2, .load = 2};
+// The bounding-sphere reject: c (6), the local ray (oc 3, d.d 3, oc.d 3, t0
+// a division and a branch, o 3), len a sqrt, reach (1), d.d > 0, o.o (3),
+// reach^2 (1), the compare.
+inline constexpr Ops kCylinderSphereReject = kCylinderEntry + Ops{.fma = 23, .div = 1, .sqrt = 1, .branch = 3};
+// The solve: w (a reciprocal and 3), a (3), the infinite cylinder's span (31
+// with 2 divisions, a sqrt and 2 branches), the slab's (11 with 2 divisions
+// and 2 branches), their overlap (2), the pick (1, 3 branches).
+inline constexpr Ops kCylinderSolved = kCylinderSphereReject + Ops{.fma = 51, .div = 5, .sqrt = 1, .branch = 7};
+// A hit adds: the point (3), z (6), the side normal (6, n.n 3, a branch, a
+// sqrt and a reciprocal, 3) or a cap's (a branch), u = z / len (a division,
+// clamp 2).
+inline constexpr Ops kCylinderHit = kCylinderSolved + Ops{.fma = 23, .div = 2, .sqrt = 1, .branch = 2};
+
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const Cylinder& cyl, const Ray& ray, Sink& sink) {
     sink.on(Event::IsCylinder);
     const double r = cyl.radius;
-    if (!(r > 0.0)) return std::nullopt;
+    if (!(r > 0.0)) {
+        count_ops(sink, kCylinderEntry);
+        return std::nullopt;
+    }
     const DVec3 p0(cyl.p0), p1(cyl.p1);
     const DVec3 ba = p1 - p0;
     const double len2 = glm::dot(ba, ba);
-    if (!(len2 > 0.0)) return std::nullopt;
+    if (!(len2 > 0.0)) {
+        count_ops(sink, kCylinderEntry);
+        return std::nullopt;
+    }
     const DVec3 c = 0.5 * (p0 + p1);
     const LocalRay lr = local_ray(ray, c);
     const double len = std::sqrt(len2);
     const double reach = 0.5 * len + r;  // bounding sphere reject
-    if (!(lr.dd > 0.0) || !(glm::dot(lr.o, lr.o) <= reach * reach)) return std::nullopt;
+    if (!(lr.dd > 0.0) || !(glm::dot(lr.o, lr.o) <= reach * reach)) {
+        count_ops(sink, kCylinderSphereReject);
+        return std::nullopt;
+    }
 
     const DVec3 w = ba / len;
     const DVec3 a = p0 - c;
@@ -72,7 +99,11 @@ template <class Sink>
         overlap(cylinder_span(lr, a, w, r, kSide),
                 slab_span(glm::dot(lr.o - a, w), glm::dot(lr.d, w), 0.0, len, kCap0, kCap1));
     SpanPick hit;
-    if (!pick(span, lr, ray, hit)) return std::nullopt;
+    if (!pick(span, lr, ray, hit)) {
+        count_ops(sink, kCylinderSolved);
+        return std::nullopt;
+    }
+    count_ops(sink, kCylinderHit);
 
     const DVec3 p = lr.o + hit.s * lr.d;
     const double z = glm::dot(p - a, w);

@@ -23,6 +23,7 @@
 
 #include "core/events.h"
 #include "core/obb.h"
+#include "core/ops.h"
 #include "intersectors/frame.h"
 #include "intersectors/hit.h"
 #include "intersectors/kinds.h"
@@ -78,20 +79,47 @@ namespace detail {
     return hull(lo.empty() ? Span{} : lo, hi.empty() ? Span{} : hi);
 }
 
+// The link program's operations per path (conventions: core/ops.h).
+// Entry: the link's 32 B (2 loads), the radii's clamps (2) and test (2).
+inline constexpr Ops kLinkEntry{.fma = 2, .branch = 2, .load = 2};
+// The bounding-sphere reject: c (6), the local ray (12, a division, a
+// branch), a and ba (6), l (3 and a sqrt), reach (2), d.d > 0, o.o (3),
+// reach^2 (1), the compare.
+inline constexpr Ops kLinkSphereReject = kLinkEntry + Ops{.fma = 33, .div = 1, .sqrt = 1, .branch = 3};
+// The solve: two end spheres (30, 4 divisions, 2 sqrts, 2 branches and 2
+// radius tests) and their hull (2); w (a reciprocal, 3, a branch); the cone's
+// test (2, a branch), nz (1, a division), nr (3, a sqrt), o - a (3), oz and
+// dz (6), o_perp and d_perp (12), ga and gb (4, 2 divisions), the slab (4, 2
+// divisions, 2 branches), the quadratic's coefficients (12); cone_in_slab
+// (its tests 2 and 5 branches, h 2, q 2 and a sqrt, the roots 2 divisions,
+// overlaps and hull 6); the final hull (2), the pick (1, 3 branches).
+inline constexpr Ops kLinkSolved = kLinkSphereReject + Ops{.fma = 101, .div = 11, .sqrt = 4, .branch = 17};
+// A hit adds: the point (3), z (6), the piece's branches (2), the cone's
+// normal (radial 9, its length 3 and a sqrt, a reciprocal, the scale 6, + nz
+// w 3), the normal's normalisation (3, a branch, a sqrt, a reciprocal, 3),
+// u (a division, clamp 2, a branch).
+inline constexpr Ops kLinkHit = kLinkSolved + Ops{.fma = 38, .div = 3, .sqrt = 2, .branch = 5};
+
 }  // namespace detail
 
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect(const Link& k, const Ray& ray, Sink& sink) {
     sink.on(Event::IsLink);
     const double r0 = std::max(double(k.r0), 0.0), r1 = std::max(double(k.r1), 0.0);
-    if (!(r0 > 0.0 || r1 > 0.0)) return std::nullopt;  // no volume (NaN lands here too)
+    if (!(r0 > 0.0 || r1 > 0.0)) {  // no volume (NaN lands here too)
+        count_ops(sink, detail::kLinkEntry);
+        return std::nullopt;
+    }
     const DVec3 p0(k.p0), p1(k.p1);
     const DVec3 c = 0.5 * (p0 + p1);
     const LocalRay lr = local_ray(ray, c);
     const DVec3 a = p0 - c, ba = p1 - p0;
     const double l = std::sqrt(glm::dot(ba, ba));
     const double reach = 0.5 * l + std::max(r0, r1);
-    if (!(lr.dd > 0.0) || !(glm::dot(lr.o, lr.o) <= reach * reach)) return std::nullopt;
+    if (!(lr.dd > 0.0) || !(glm::dot(lr.o, lr.o) <= reach * reach)) {
+        count_ops(sink, detail::kLinkSphereReject);
+        return std::nullopt;
+    }
 
     enum Part { kCone = 0, kSphere0 = 1, kSphere1 = 2 };
     Span span = hull(r0 > 0.0 ? sphere_span(lr, a, r0, kSphere0) : Span{},
@@ -111,7 +139,11 @@ template <class Sink>
                                                glm::dot(o_perp, o_perp) - ga * ga, lr.dd, slab));
     }
     SpanPick hit;
-    if (!pick(span, lr, ray, hit)) return std::nullopt;
+    if (!pick(span, lr, ray, hit)) {
+        count_ops(sink, detail::kLinkSolved);
+        return std::nullopt;
+    }
+    count_ops(sink, detail::kLinkHit);
 
     const DVec3 p = lr.o + hit.s * lr.d;
     const double z = glm::dot(p - a, w);

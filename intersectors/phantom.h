@@ -206,6 +206,34 @@ inline bool capsule_z(const DVec3& a, const DVec3& b, double R, double& lo, doub
     return lo <= hi;
 }
 
+// The bracketed program's own operations (conventions: core/ops.h).
+// The bounding-cylinder early out: the axis (3), its length (3 and a sqrt)
+// and test, w (a reciprocal, 3), the two inner points' deviations (2 x 16
+// with a sqrt each), |e_z x w| (3 and a sqrt), the distance (5 and a
+// division), zmax (5), the final compare (3, 2 branches).
+inline constexpr Ops kPhantomEarlyOut{.fma = 57, .div = 2, .sqrt = 4, .branch = 4};
+// Before the brackets: the end spheres (2 x 10, each a sqrt, a division and
+// 3 branches), B'' and r'' at both ends (16), the scale (13) and pad (1).
+inline constexpr Ops kPhantomBracketSetup{.fma = 50, .div = 2, .sqrt = 2, .branch = 6};
+// One bracket's capsule test: B and r at both ends (2 x 25), the sag bound
+// (2 x 10 with a sqrt each, the radius sag 10, grow 4), capsule_z (the end
+// spheres 12 with 2 sqrts, the body: w and its length 6 and a sqrt, sin^2 4
+// and a division, wn a reciprocal and 3, y0, mp, ep, qb, qc 23, h 3 and a
+// sqrt, the roots 4 and 2 divisions, the caps 6 and 2 divisions), its
+// tests, and the start point (8 and a division).
+inline constexpr Ops kPhantomBracketTest{.fma = 155, .div = 7, .sqrt = 7, .branch = 10};
+// One iteration of phantom_search: B (18), B' (12), |B'|^2 (3) and its test,
+// |B'| (a sqrt) and its reciprocal, a (3), r and r'/|B'| (14, a division),
+// nk (3, a sqrt, a reciprocal), ca and cp (9), rho0, rho1 (5), the quadratic
+// (13), its tests (2 branches), the root (2, a sqrt, a division) and its
+// test, zeta and zeta_c (6, a division), t_raw (2), the convergence test (a
+// branch), the secant step (5, a division, 2 branches), the clamp (2) and the
+// test against t.
+inline constexpr Ops kPhantomIteration{.fma = 98, .div = 6, .sqrt = 3, .branch = 8};
+// A hit: the normal in the frame (radial 6, its length 3 and a sqrt, the
+// scale 6 and a reciprocal, - k a 3), then kPhantomReport.
+inline constexpr Ops kPhantomHit = kPhantomReport + Ops{.fma = 18, .div = 1, .sqrt = 1};
+
 }  // namespace detail
 
 // Runs the program `opt` selects (see phantom_curve.h).
@@ -214,11 +242,13 @@ template <class Sink>
                                            const PhantomOptions& opt = {}) {
     if (opt.program == PhantomProgram::Paper) return intersect_reshetov(pc, ray, sink, opt);
     sink.on(Event::IsPhantom);
+    count_ops(sink, detail::kPhantomEntry);
     if (!is_finite(pc) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
     const double rmax = max_radius(pc);
     if (!(glm::length(DVec3(ray.direction)) > 0.0) || !(rmax > 0.0)) return std::nullopt;
 
     sink.on(Event::PhantomSetup);
+    count_ops(sink, detail::kPhantomSetup);
     const detail::RccCurve rcc = detail::to_ray_frame(pc, ray);
     const std::array<DVec3, 4>& q = rcc.q;
     const std::array<double, 4>& rr = rcc.r;
@@ -227,6 +257,7 @@ template <class Sink>
 
     if (opt.early_out) {
         sink.on(Event::PhantomEarlyOut);
+        count_ops(sink, detail::kPhantomEarlyOut);
         const DVec3 axis = q[3] - q[0];
         const double len = glm::length(axis);
         double dev = 0.0, dist;
@@ -321,8 +352,12 @@ template <class Sink>
     }
     sink.add(Event::PhantomIteration, static_cast<std::uint32_t>(iterations));
     sink.add(Event::PhantomBracketTest, bracket_tests);
+    count_ops(sink, detail::kPhantomBracketSetup);
+    count_ops(sink, detail::kPhantomBracketTest, bracket_tests);
+    count_ops(sink, detail::kPhantomIteration, static_cast<std::uint32_t>(iterations));
 
     if (!(best.s < kDInf)) return std::nullopt;
+    count_ops(sink, detail::kPhantomHit);
     const float t = static_cast<float>(best.s / dlen);
     if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
     return Hit{t, detail::from_ray_frame(rcc, best.normal, ray), static_cast<float>(best.u)};

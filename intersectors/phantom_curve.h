@@ -13,6 +13,7 @@
 #pragma once
 
 #include "core/enum_names.h"
+#include "core/ops.h"
 #include "intersectors/frame.h"
 
 #include <algorithm>
@@ -108,6 +109,20 @@ struct RccCurve {
     const double nl = glm::length(n);
     return nl > 0.0 ? Vec3(n / nl) : Vec3(-ray.direction / float(c.dlen));
 }
+
+// Operations both phantom programs share (conventions: core/ops.h).
+// Entry: the curve's 4 control points and 4 radii (64 B, 4 loads), the
+// finiteness tests (3), the largest radius (3), |d| (3 and a sqrt) and the
+// two tests on it.
+inline constexpr Ops kPhantomEntry{.fma = 6, .sqrt = 1, .branch = 5, .load = 4};
+// to_ray_frame: |d| (3 and a sqrt), e = d / |d| (a reciprocal, 3), the basis
+// (12 and a reciprocal), each control point moved and projected (4 x 12),
+// the radii's clamps (4).
+inline constexpr Ops kPhantomSetup{.fma = 70, .div = 2, .sqrt = 1};
+// from_ray_frame: the normal back in world space (9), its length (3 and a
+// sqrt) and normalisation (a reciprocal, 3); t = s / |d| (a division) and
+// its two range tests.
+inline constexpr Ops kPhantomReport{.fma = 15, .div = 2, .sqrt = 1, .branch = 2};
 
 }  // namespace detail
 

@@ -172,20 +172,45 @@ struct ReshetovHit {
     return std::nullopt;
 }
 
+// The paper program's own operations (conventions: core/ops.h).
+// The capped bounding cylinder: oc and the axis (6), its length (3 and a
+// sqrt) and test, w (a reciprocal, 3), its radius from B(1/3) and B(2/3)
+// (2 x 28 with a sqrt each), the cap slab (10, a reciprocal, a branch), R
+// (1), the infinite cylinder (op and dp 18, a, b, c 11, h 2, its tests, a
+// sqrt, the span 4 and a reciprocal), the final compare.
+inline constexpr Ops kReshetovCylinder{.fma = 118, .div = 4, .sqrt = 4, .branch = 6};
+// The frame's extras: smin and smax (2), which end the ray meets first (a
+// compare).
+inline constexpr Ops kReshetovSetup = kPhantomSetup + Ops{.fma = 2, .branch = 1};
+// One iteration: B(t) (18), B'(t) (12), |B'|^2 (3) and its test, r and r' (12);
+// the tangent cone (|B'| 3 and a sqrt, its reciprocal, az, b, k, rho, alpha,
+// beta, gamma 20, a test, the discriminant 2 and a sqrt, s 2 and a division,
+// dt 2); the convergence test (3, 2 branches), the clamp (2), the sign test
+// (1, a branch), the step (1), the range test (2 branches), the loop's branch.
+inline constexpr Ops kReshetovIteration{.fma = 79, .div = 2, .sqrt = 2, .branch = 8};
+// The restart from the other end: t = 1 - t (1), the loop's branch.
+inline constexpr Ops kReshetovSecondEnd{.fma = 2, .branch = 1};
+// A hit: its range tests (2), the cone's normal (26, 3 reciprocals, 2 sqrts),
+// then kPhantomReport.
+inline constexpr Ops kReshetovHit = kPhantomReport + Ops{.fma = 26, .div = 3, .sqrt = 2, .branch = 2};
+
 }  // namespace detail
 
 template <class Sink>
 [[nodiscard]] std::optional<Hit> intersect_reshetov(const PhantomCurve& pc, const Ray& ray,
                                                     Sink& sink, const PhantomOptions& opt) {
     sink.on(Event::IsPhantom);
+    count_ops(sink, detail::kPhantomEntry);
     if (!is_finite(pc) || !is_finite(ray.origin) || !is_finite(ray.direction)) return std::nullopt;
     const double rmax = max_radius(pc);
     if (!(glm::length(DVec3(ray.direction)) > 0.0) || !(rmax > 0.0)) return std::nullopt;
     if (opt.early_out) {
         sink.on(Event::PhantomCylinderTest);
+        count_ops(sink, detail::kReshetovCylinder);
         if (!detail::reshetov_cylinder(pc, ray, rmax)) return std::nullopt;
     }
     sink.on(Event::PhantomSetup);
+    count_ops(sink, detail::kReshetovSetup);
     const detail::RccCurve rcc = detail::to_ray_frame(pc, ray);
     const double smin = double(ray.tmin) * rcc.dlen, smax = double(ray.tmax) * rcc.dlen;
     // Start at the end the ray meets first; on failure retry from the other.
@@ -193,11 +218,16 @@ template <class Sink>
     std::uint32_t iterations = 0;
     std::optional<detail::ReshetovHit> hit;
     for (int end = 0; end < 2 && !hit; ++end, start = 1.0 - start) {
-        if (end == 1) sink.on(Event::PhantomSecondEnd);
+        if (end == 1) {
+            sink.on(Event::PhantomSecondEnd);
+            count_ops(sink, detail::kReshetovSecondEnd);
+        }
         hit = detail::reshetov_search(rcc, start, smin, smax, opt.paper_max_iterations, iterations);
     }
     sink.add(Event::PhantomPaperIteration, iterations);
+    count_ops(sink, detail::kReshetovIteration, iterations);
     if (!hit) return std::nullopt;
+    count_ops(sink, detail::kReshetovHit);
     const float t = static_cast<float>(hit->s / rcc.dlen);
     if (!(t >= ray.tmin && t <= ray.tmax)) return std::nullopt;
     return Hit{t, detail::from_ray_frame(rcc, hit->normal, ray), static_cast<float>(hit->u)};

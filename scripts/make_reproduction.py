@@ -4,7 +4,7 @@ reproduction runs, with the rtcsim Python module.
 
 usage: scripts/make_reproduction.py RUNS_DIR [--images DIR] [--trace [SIZE]] > tables.md
 
-RUNS_DIR holds fig3/, hair/, scivis/, memory/ as written by
+RUNS_DIR holds fig3/, curly/, hair/, scivis/, memory/ as written by
   build/simulate configs/runs/<name>.json --out RUNS_DIR/<name>
 (or rtcsim.simulate). Prints the Markdown tables (synthetic table against the
 paper, hair and sci-vis predictions, memory) and writes into docs/images/:
@@ -56,15 +56,20 @@ def model_name(r):
     return r.sweep_point.get("scene.name", r.name)
 
 
+def kind_label(r):
+    kind = r.kind
+    if kind == "phantom":
+        kind += f" /{r.sweep_point.get('primitives.subdivision', 1)}"
+    return kind
+
+
 def model_table(runs, preset):
     lines = ["| model | kind | prims | speedup | AABB/OBB area | IS calls ref -> obb (per ray) "
              "| IS-call reduction | obb memory overhead |",
              "|---|---|---:|---:|---:|---:|---:|---:|"]
     points = []
     for r in runs:
-        kind = r.kind
-        if kind == "phantom":
-            kind += f" /{r.sweep_point.get('primitives.subdivision', 1)}"
+        kind = kind_label(r)
         s, a = r.speedup("obb", preset), r.area_ratio()
         ri, oi = r.is_per_ray("ref"), r.is_per_ray("obb")
         name = model_name(r)
@@ -78,6 +83,63 @@ def model_table(runs, preset):
         if s:
             points.append((a, s, name))
     return "\n".join(lines), points
+
+
+# Table 1 of the paper (method.md): ref rays/s and the masquerade's speedup
+# per kind, for the two curly models the stand-ins of curly_table1.json mimic.
+TABLE1 = {
+    "curly lock": {"capsule": (4.1e6, 3.82), "link": (4.2e6, 4.03), "phantom /1": (81.3e3, 1.74),
+                   "phantom /2": (343.0e3, 2.37), "phantom /4": (1.3e6, 3.44), "phantom /8": (5.0e6, 3.65)},
+    "curly head": {"capsule": (15.5e6, 3.17), "link": (15.0e6, 3.27), "phantom /1": (1.0e6, 2.06),
+                   "phantom /2": (3.7e6, 2.73), "phantom /4": (12.2e6, 2.88)},
+}
+
+
+def speedup_interval(r, preset, method="obb"):
+    """The run's 90 % interval of the speedup under `preset`, or None."""
+    table = r.data.get(f"speedup_interval_over_{r.baseline}", {}).get(method, {})
+    value = table.get(preset) if isinstance(table, dict) else None
+    return tuple(value) if value else None
+
+
+def table1_predictions(runs, preset):
+    """Table 1 on the curly stand-ins, nothing fitted to it: each speedup with
+    its interval against the paper's, and the reference method's cost per ray
+    relative to capsules on the same model (the paper's: capsule rays/s over
+    the kind's)."""
+    lines = ["| model | kind | ref cycles/ray vs capsule (paper) | obb speedup [90 %] | paper | error | "
+             "paper inside the interval |", "|---|---|---:|---:|---:|---:|---|"]
+    by_model = {}
+    for r in runs:
+        by_model.setdefault(model_name(r), {})[kind_label(r)] = r
+    inside = counted = 0
+    for model, kinds in by_model.items():
+        paper = TABLE1.get(model, {})
+        capsule = kinds.get("capsule")
+        for kind, r in kinds.items():
+            s = r.speedup("obb", preset)
+            ref_ratio = r.cycles_per_ray("ref", preset) / capsule.cycles_per_ray("ref", preset) if capsule else None
+            rays, target = paper.get(kind, (None, None))
+            paper_ratio = paper["capsule"][0] / rays if rays and "capsule" in paper else None
+            interval = speedup_interval(r, preset)
+            shown = f"{s:.2f}x" if s else "n/a"
+            if s and interval:
+                shown += f" [{interval[0]:.2f}-{interval[1]:.2f}]"
+            error = f"{100 * (s / target - 1):+.1f} %" if s and target else ""
+            within = ""
+            if interval and target and kind in ("capsule", "link"):
+                counted += 1
+                hit = interval[0] <= target <= interval[1]
+                inside += hit
+                within = "yes" if hit else "no"
+            ratio = f"{ref_ratio:.2f}" if ref_ratio else "n/a"
+            if paper_ratio:
+                ratio += f" ({paper_ratio:.2f})"
+            lines.append(f"| {model} | {kind} | {ratio} | {shown} | {f'{target:.2f}x' if target else ''} | "
+                         f"{error} | {within} |")
+    lines.append("")
+    lines.append(f"Paper values inside the 90 % interval (capsule and link cells): {inside} of {counted}.")
+    return "\n".join(lines)
 
 
 def memory_table(runs):
@@ -144,6 +206,10 @@ def main():
         print(f"\n## {name}\n")
         print(table)
         groups[name + " models"] = points
+    curly = rtcsim.load_reports(os.path.join(args.runs_dir, "curly"))
+    if curly:
+        print(f"\n## Table 1 predictions (curly stand-ins, {PRESET})\n")
+        print(table1_predictions(curly, PRESET))
     mem = rtcsim.load_reports(os.path.join(args.runs_dir, "memory"))
     if mem:
         print("\n## memory\n")

@@ -15,6 +15,15 @@ namespace {
 
 std::string label_of(const RunResult& r) { return r.sweep_label.empty() ? r.config.name : r.sweep_label; }
 
+// The config as the provenance names it: relative to the working directory
+// when it is below it (configs/runs/fig3_bundles.json), else as given.
+std::string config_name(const std::string& file) {
+    std::error_code ec;
+    const auto rel = std::filesystem::relative(file, ec);
+    const std::string s = rel.generic_string();
+    return ec || s.empty() || s.starts_with("..") ? file : s;
+}
+
 }  // namespace
 
 CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlohmann::json& config,
@@ -57,6 +66,11 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
         const CostModel start = desc.start.empty() ? runs.front()->costs.front()
                                                    : load_cost_model(resolve_preset(desc.start, file, "/calibrate/start"));
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
+        // What it was fitted on, so runs at another resolution are told.
+        const WorkloadDesc& w = runs.front()->config.workload;
+        out.result.model.fitted_on = {};
+        if (w.type != WorkloadType::Rays)
+            out.result.model.fitted_on = {w.width, w.height, w.spp, w.bounces, config_name(file)};
     } catch (const std::invalid_argument& e) {
         throw InputError(file + ": /calibrate: " + e.what());
     }

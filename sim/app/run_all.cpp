@@ -12,6 +12,7 @@
 #include "sim/config/sweep.h"
 #include "sim/run/work_estimate.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -184,7 +185,18 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, plan.file, out, cli.quiet, cli.limits.force);
     std::cout << summary_table(runs).to_console();
-    if (!cli.quiet) std::cerr << "outputs in " << out << "/\n";
+    if (!cli.quiet) {
+        std::vector<std::string> notes;  // each preset's once (report.json: resolution_notes)
+        for (const RunResult& r : runs)
+            for (const CostModel& c : r.costs) {
+                if (r.config.workload.type == WorkloadType::Rays) continue;
+                std::string n = resolution_note(c, static_cast<std::uint64_t>(r.camera.width) *
+                                                       static_cast<std::uint64_t>(r.camera.height));
+                if (!n.empty() && std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(std::move(n));
+            }
+        for (const std::string& n : notes) std::cerr << "note: " << n << "\n";
+        std::cerr << "outputs in " << out << "/\n";
+    }
     return 0;
 }
 

@@ -3,6 +3,8 @@
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 
+#include <cstdio>
+
 
 namespace rtc {
 
@@ -12,10 +14,29 @@ bool CostModel::has_feature(std::string_view f) const {
     return false;
 }
 
+bool CostModel::prices(Event e) const {
+    if (is_operation_event(e)) return program_pricing == ProgramPricing::ByOperation;
+    if (is_program_name_event(e)) return program_pricing == ProgramPricing::ByName;
+    return true;
+}
+
 std::string CostModel::missing_feature(const std::vector<std::string>& needs) const {
     for (const std::string& n : needs)
         if (!has_feature(n)) return n;
     return {};
+}
+
+std::string resolution_note(const CostModel& m, std::uint64_t pixels) {
+    const std::uint64_t fitted = m.fitted_on.pixels();
+    if (fitted == 0 || pixels == 0 || (pixels * 4 >= fitted && pixels <= fitted * 4)) return {};
+    const double ratio = pixels > fitted ? double(pixels) / double(fitted) : double(fitted) / double(pixels);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", ratio);
+    return m.name + " was fitted at " + std::to_string(m.fitted_on.width) + " x " + std::to_string(m.fitted_on.height) +
+           " = " + std::to_string(fitted) + " pixels; this run has " + std::to_string(pixels) + " pixels (" + buf + "x " +
+           (pixels > fitted ? "more" : "fewer") +
+           "): the warp model's answer depends on how much scene an 8 x 4 tile covers "
+           "(docs/execution-model.md, Resolution)";
 }
 
 PricedRun price(const EventTotals& counts, const CostModel& model) {
@@ -38,7 +59,7 @@ double price_cycles(const RayCounts& counts, const CostModel& model) {
 CostModel parse_cost_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "features", "execution", "cycles"});
+    r.allow_only({"name", "description", "features", "execution", "fitted_on", "cycles"});
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
@@ -53,12 +74,37 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
         }
     }
     if (r.has("execution")) m.execution = parse_execution_model(r.child("execution"));
+    if (r.has("fitted_on")) {
+        const JsonReader f = r.child("fitted_on");
+        f.allow_only({"width", "height", "spp", "bounces", "config"});
+        m.fitted_on.width = static_cast<int>(f.number("width", std::nullopt, 1.0, 1e6));
+        m.fitted_on.height = static_cast<int>(f.number("height", std::nullopt, 1.0, 1e6));
+        m.fitted_on.spp = static_cast<std::uint32_t>(f.number("spp", std::nullopt, 1.0, 1e6));
+        m.fitted_on.bounces = static_cast<std::uint32_t>(f.number("bounces", std::nullopt, 0.0, 1e6));
+        m.fitted_on.config = f.string("config", "");
+    }
     const JsonReader cycles = r.child("cycles");
-    for (const auto& [key, value] : cycles.json().items())
-        if (!event_from_name(key)) cycles.fail(key, "unknown event (see core/events.h)");
+    bool by_operation = false;
+    for (const auto& [key, value] : cycles.json().items()) {
+        const auto e = event_from_name(key);
+        if (!e) cycles.fail(key, "unknown event (see core/events.h)");
+        by_operation = by_operation || is_operation_event(*e);
+    }
+    m.program_pricing = by_operation ? ProgramPricing::ByOperation : ProgramPricing::ByName;
     for (std::size_t i = 0; i < kEventCount; ++i) {
         const std::string name(kEventNames[i]);
-        if (!cycles.has(name)) cycles.fail(name, "missing: every event needs a cost");
+        if (!m.prices(static_cast<Event>(i))) {
+            if (cycles.has(name))
+                cycles.fail(name, "this preset prices programs by operation class (op_*), so it cannot also "
+                                  "price the program event \"" + name + "\" by name: remove one of the two");
+            m.source[i] = by_operation ? "not priced: programs are priced by the operations they execute (op_*)"
+                                       : "not priced: this preset prices programs by name";
+            continue;
+        }
+        if (!cycles.has(name))
+            cycles.fail(name, is_operation_event(static_cast<Event>(i))
+                                  ? "missing: a preset that prices operation classes needs every op_* cost"
+                                  : "missing: every event needs a cost");
         const JsonReader e = cycles.child(name);
         e.allow_only({"value", "source"});
         m.cycles[i] = e.number("value", std::nullopt, 0.0, 1e9);
@@ -89,9 +135,13 @@ std::string cost_model_to_json(const CostModel& m) {
         e["rt_parallel_lanes"] = {{"value", m.execution.rt_parallel_lanes}, {"source", source("rt_parallel_lanes")}};
         j["execution"] = e;
     }
+    if (m.fitted_on.pixels() > 0)
+        j["fitted_on"] = {{"width", m.fitted_on.width}, {"height", m.fitted_on.height}, {"spp", m.fitted_on.spp},
+                          {"bounces", m.fitted_on.bounces}, {"config", m.fitted_on.config}};
     nlohmann::ordered_json cycles;
     for (std::size_t i = 0; i < kEventCount; ++i)
-        cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};
+        if (m.prices(static_cast<Event>(i)))
+            cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};
     j["cycles"] = cycles;
     return j.dump(2) + "\n";
 }

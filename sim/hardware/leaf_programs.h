@@ -8,6 +8,7 @@
 
 #include "core/affine.h"
 #include "core/obb.h"
+#include "core/ops.h"
 #include "core/sinks.h"
 #include "core/traverse.h"
 #include "intersectors/capsule.h"
@@ -57,6 +58,12 @@ std::optional<Hit> run_intersection_program(const Prim& prim, const Ray& ray, Si
     else
         return intersect(prim, ray, sink);
 }
+
+// The software OBB test's operations (conventions: core/ops.h): the
+// primitive's 3 x 4 map (48 B, 3 loads), the ray's origin (12) and direction
+// (9) mapped, the direction's reciprocals (3), the slab test (12 and 8 min
+// and max) and its two branches.
+inline constexpr Ops kLeafObbTest{.fma = 41, .div = 3, .branch = 2, .load = 3};
 
 // The leaf handling of one ray. A method's trace function calls begin(),
 // then triangle() / custom() for each primitive its traversal reaches (each
@@ -149,6 +156,7 @@ private:
             // The same float operations as the hardware's instance transform +
             // unit-box test of the masquerade (obb), so the same rays pass.
             sink.on(Event::LeafObbTest);
+            count_ops(sink, kLeafObbTest);
             const Ray u = leaf_obbs_[index].ray(ray);
             if (intersect_box(kUnitBox, u.origin, safe_inverse(u.direction), u.tmin, u.tmax) == kInfinity)
                 return kInfinity;

@@ -58,6 +58,15 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
             {"total", pr.total_cycles},
             {"per_ray", rays ? pr.total_cycles / static_cast<double>(rays) : 0.0},
             {"breakdown", breakdown}};
+        // What one intersection-program call costs on average under this
+        // preset (its program events, priced per call): the derived figure of
+        // a preset that prices operation classes (docs/execution-model.md).
+        if (const std::uint64_t calls = m.frame.totals[Event::IsCall]; calls > 0) {
+            double program = 0.0;
+            for (std::size_t i = 0; i < kEventCount; ++i)
+                if (kEventUnits[i] == EventUnit::Program) program += pr.by_event[i];
+            entry["program_cycles_per_call"] = program / static_cast<double>(calls);
+        }
         if (pr.execution == ExecutionKind::Warp) {
             // The breakdown above is the per-ray sum's; the warp model's is by unit.
             const WarpTotals& w = m.warp[p];
@@ -149,6 +158,14 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     }
     j["cost_presets"] = nlohmann::ordered_json::array();
     for (const CostModel& c : run.costs) j["cost_presets"].push_back(c.name);
+    nlohmann::ordered_json resolution = nlohmann::ordered_json::object();
+    if (run.config.workload.type != WorkloadType::Rays)
+        for (const CostModel& c : run.costs) {
+            const std::string note =
+                resolution_note(c, static_cast<std::uint64_t>(run.camera.width) * static_cast<std::uint64_t>(run.camera.height));
+            if (!note.empty()) resolution[c.name] = note;
+        }
+    if (!resolution.empty()) j["resolution_notes"] = resolution;
     j["memory_preset"] = run.memory.name;
     nlohmann::ordered_json methods;
     for (const MethodRun& m : run.methods) methods[m.method] = method_json(m, run);
