@@ -10,8 +10,21 @@ Configs, presets and errors are the `simulate` CLI's (rtcsim.InputError
 carries its one-line "<file>: <JSON path>: <problem>" message). Figures:
 rtcsim.plot (matplotlib), also `python3 -m rtcsim.plot report.json --out DIR`.
 """
-from ._rtcsim import (EVENT_NAMES, EVENT_UNITS, Calibration, CostModel, InputError, PricedRun, Scene,
-                      __version__, method_names)
+import sys as _sys
+
+from ._interpreter import BUILT_FOR as _BUILT_FOR, BUILT_VERSION as _BUILT_VERSION
+
+try:
+    import numpy as _numpy  # noqa: F401  (the compiled module and the results need it)
+    from ._rtcsim import (EVENT_NAMES, EVENT_UNITS, Calibration, CostModel, InputError, PricedRun, Scene,
+                          __version__, method_names)
+except ImportError as _e:
+    # Another interpreter than the build's (another version, or no NumPy):
+    # one line naming the one to use, not a traceback from deep inside.
+    raise ImportError(
+        f"rtcsim was built for {_BUILT_FOR} (Python {_BUILT_VERSION}, with NumPy) and cannot be imported by "
+        f"{_sys.executable} (Python {_sys.version_info[0]}.{_sys.version_info[1]}: {_e}); run {_BUILT_FOR} "
+        "instead (build/rtcsim-python is that interpreter with build/python on its path)") from None
 from .api import (PRESET_DIR, calibrate, load_cost_model, load_scene, plan, price, run, simulate,
                   summary_table, sweep)
 from .report import Report, load_report, load_reports
