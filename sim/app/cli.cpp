@@ -73,7 +73,9 @@ paths and presets:
   name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
   $RTCSIM_PRESET_DIR, else <bin>/../share/rtcsim/hw (installed), else the
   install prefix's share/rtcsim/hw, else the source tree's configs/hw; or by
-  a path (with a '/' or ending in .json). Details: configs/README.md.
+  a path (with a '/' or ending in .json). A config without "cost" is priced
+  under turing-calibrated, the preset fitted to the paper (the best evidence
+  there is). Details: configs/README.md.
 
 memory:
   RTCSIM_HUGE_PAGES=auto|on|off (default auto): huge pages for arrays of 4 MB

@@ -46,7 +46,7 @@ struct RunConfig {
     TraceOptions trace;               // IS schedule, phantom early-out
     // Preset names or paths as given; parse_run_config resolves them into files
     // (sim/util/paths.h: names are searched in the preset directories).
-    std::vector<std::string> cost_presets{"turing-guess"};  // first = primary
+    std::vector<std::string> cost_presets{"turing-calibrated"};  // first = primary; the best evidence by default
     std::string memory_preset = "memory-optix7";
     WorkloadDesc workload;
     OutputOptions output;
