@@ -49,13 +49,15 @@ usage:
 options (--opt value or --opt=value):
   --out DIR             output directory (default: out/<config name>/); it must be
                         missing or empty, see --force
-  --threads N           worker threads (default: all cores; results do not depend on it)
+  --threads N           worker threads (default and 0: all cores; results do not depend on it)
   --set key.path=value  override any config key by its path, e.g.
                         --set workload.spp=1 --set scene.tilt_deg=30
                         --set 'methods=["obb"]'  (value parsed as JSON, else a string);
                         paths set this way are relative to the config file, like
                         every path in it
-  --quiet, -q           no effective-config echo, no progress bars
+  --quiet, -q           no progress bars or notes on stderr
+  --show-config         print the effective configuration (overrides and defaults
+                        applied) before running; it is always in report.json
   --max-rays N          refuse runs estimated to trace more than N rays in all
                         (every method and sweep point; default 1e10)
   --max-memory SIZE     refuse runs estimated to need more memory, e.g. 8G or
@@ -140,6 +142,7 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     app.add_flag("-h,--help", o.help);
     app.add_flag("--version", o.version);
     app.add_flag("-q,--quiet", o.quiet);
+    app.add_flag("--show-config", o.show_config);
     app.add_flag("--force", o.limits.force);
     app.add_flag("--estimate", o.estimate);
     // Given twice, the last value wins (as with --set, later overrides earlier).
@@ -169,8 +172,9 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
         require_value(threads, "--threads");
         unsigned n = 0;
         const auto [p, ec] = std::from_chars(threads.data(), threads.data() + threads.size(), n);
-        if (ec != std::errc() || p != threads.data() + threads.size() || n == 0 || n > 1024)
-            throw InputError("simulate: --threads: expected a positive integer, got \"" + threads + "\"");
+        if (ec != std::errc() || p != threads.data() + threads.size() || n > 1024)
+            throw InputError("simulate: --threads: expected 0 (all cores) or a positive integer up to 1024, got \"" +
+                             threads + "\"");
         o.threads = n;
     }
     if (given("--max-rays")) {

@@ -19,6 +19,7 @@ struct CliOptions {
     unsigned threads = 0;            // 0: all cores
     std::vector<std::string> sets;   // key.path=value overrides, in order
     bool quiet = false;
+    bool show_config = false;        // --show-config: echo the effective config first
     WorkLimits limits;               // --max-rays, --max-memory, --force
     // --force also empties an output directory an earlier run wrote and lets
     // calibrate overwrite an existing preset file: one flag for "I know, go on".

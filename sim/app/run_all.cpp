@@ -122,8 +122,8 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
     const std::vector<RunConfig>& parsed = plan.parsed;
     const WorkEstimate& work = plan.work;
     if (!cli.quiet) {
-        std::cerr << "simulate " << plan.file << " -> " << out << "\neffective configuration:\n"
-                  << config.dump(2) << "\n";
+        std::cerr << "simulate " << plan.file << " -> " << out << "\n";
+        if (cli.show_config) std::cerr << "effective configuration:\n" << config.dump(2) << "\n";
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
         std::cerr << "estimate: " << count_text(work.rays) << " rays, "
                   << (work.primitives > 0 ? count_text(work.primitives) + " primitives, " : std::string())

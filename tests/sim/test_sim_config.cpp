@@ -20,7 +20,11 @@ TEST_CASE("cli: options, errors and help") {
     CHECK(*o.out == "dir");
     CHECK(parse_cli({"calibrate", "y.json"}).calibrate);
     CHECK(parse_cli({"--help"}).help);
-    CHECK_THROWS_WITH_AS((void)parse_cli({"x.json", "--threads", "0"}), doctest::Contains("--threads"), InputError);
+    CHECK(parse_cli({"x.json", "--threads", "0"}).threads == 0);  // all cores, as report.json documents
+    CHECK_THROWS_WITH_AS((void)parse_cli({"x.json", "--threads", "-1"}), doctest::Contains("--threads"), InputError);
+    CHECK_THROWS_WITH_AS((void)parse_cli({"x.json", "--threads", "2000"}), doctest::Contains("--threads"), InputError);
+    CHECK(!parse_cli({"x.json"}).show_config);  // the config echo is opt-in
+    CHECK(parse_cli({"x.json", "--show-config"}).show_config);
     CHECK_THROWS_WITH_AS((void)parse_cli({"x.json", "--bogus"}), doctest::Contains("unknown option --bogus"), InputError);
     CHECK_THROWS_AS((void)parse_cli({}), InputError);
     CHECK_THROWS_AS((void)parse_cli({"x.json", "--set"}), InputError);
