@@ -5,8 +5,10 @@
 
 #include "core/sinks.h"
 #include "sim/hardware/execution_model.h"
+#include "sim/hardware/uncertainty/cost_uncertainty.h"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +24,7 @@ struct CostModel {
     // lacks is priced n/a. Default: what Turing-class RT hardware has.
     std::vector<std::string> features{"custom_primitives", "instance_transforms"};
     ExecutionModel execution;  // per_ray unless the preset has an "execution" block
+    std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
 
     [[nodiscard]] bool has_feature(std::string_view f) const;
     // The first of `needs` this preset lacks, or empty.
