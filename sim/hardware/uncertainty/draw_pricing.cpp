@@ -32,7 +32,51 @@ WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.si
         for (std::size_t k = 0; k < kProgramEventCount; ++k)
             programs_change_ = programs_change_ || m->cycles[kProgramEvents[k]] != set.base->cycles[kProgramEvents[k]];
     }
-    for (std::vector<double>* v : {&lane_, &shader_max_, &rt_max_, &rt_sum_}) v->assign(n_, 0.0);
+    for (std::vector<double>* v : {&shader_max_, &rt_max_, &rt_sum_, &lane_}) v->assign(n_, 0.0);
+}
+
+void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum) {
+    const CostModel& base = *set_->base;
+    const std::size_t n = n_, k_count = u.changed.size(), stride = k_count + 1;
+    cand_.clear();
+    counts_.assign(stride, 0.0);  // the wave's sums: fixed, then each changed event
+    double row[kEventCount + 1];  // one lane: fixed sum, then its changed counts
+    for (const LaneWork& l : wave.lanes) {
+        row[0] = 0.0;
+        for (const std::uint8_t e : u.fixed) row[0] += static_cast<double>(l.counts.n[e]) * base.cycles[e];
+        for (std::size_t k = 0; k < k_count; ++k) row[k + 1] = static_cast<double>(l.counts.n[u.changed[k]]);
+        for (std::size_t k = 0; k < stride; ++k) counts_[k] += row[k];
+        const auto covers = [&](const double* a, const double* b) {  // a >= b everywhere
+            for (std::size_t k = 0; k < stride; ++k)
+                if (a[k] < b[k]) return false;
+            return true;
+        };
+        bool dominated = false;
+        for (std::size_t c = 0; c < cand_.size() && !dominated; c += stride) dominated = covers(&cand_[c], row);
+        if (dominated) continue;
+        for (std::size_t c = 0; c < cand_.size();)  // drop the candidates this lane covers
+            if (covers(row, &cand_[c])) cand_.erase(cand_.begin() + static_cast<std::ptrdiff_t>(c),
+                                                     cand_.begin() + static_cast<std::ptrdiff_t>(c + stride));
+            else c += stride;
+        cand_.insert(cand_.end(), row, row + stride);
+    }
+    if (sum) {  // over all lanes: linear in the summed counts
+        for (std::size_t d = 0; d < n; ++d) sum[d] = counts_[0];
+        for (std::size_t k = 0; k < k_count; ++k) {
+            const double* cost = u.cost.data() + k * n;
+            for (std::size_t d = 0; d < n; ++d) sum[d] += counts_[k + 1] * cost[d];
+        }
+    }
+    for (std::size_t c = 0; c < cand_.size(); c += stride) {
+        const double* lane_c = &cand_[c];
+        double* const w = lane_.data();  // this lane under every draw
+        for (std::size_t d = 0; d < n; ++d) w[d] = lane_c[0];
+        for (std::size_t k = 0; k < k_count; ++k) {
+            const double* cost = u.cost.data() + k * n;
+            for (std::size_t d = 0; d < n; ++d) w[d] += lane_c[k + 1] * cost[d];
+        }
+        for (std::size_t d = 0; d < n; ++d) max[d] = std::max(max[d], w[d]);
+    }
 }
 
 void WaveDrawPricer::prepare_profiles(const CallProfiles& table) {
@@ -47,26 +91,10 @@ void WaveDrawPricer::add(const WaveWork& wave, WarpTotals* totals) {
     const std::size_t n = n_;
     std::fill(shader_max_.begin(), shader_max_.end(), 0.0);  // price_wave: max(0, lanes)
     std::fill(rt_max_.begin(), rt_max_.end(), -1.0);
-    std::fill(rt_sum_.begin(), rt_sum_.end(), 0.0);
-    double* const lane = lane_.data();
-    // One lane's cost of a unit under every draw, into lane[].
-    const auto lane_cost = [&](const LaneWork& l, const Unit& u) {
-        double fixed = 0.0;
-        for (const std::uint8_t e : u.fixed) fixed += static_cast<double>(l.counts.n[e]) * base.cycles[e];
-        std::fill(lane, lane + n, fixed);
-        for (std::size_t k = 0; k < u.changed.size(); ++k) {
-            const double c = static_cast<double>(l.counts.n[u.changed[k]]);
-            if (c == 0.0) continue;
-            const double* cost = u.cost.data() + k * n;
-            for (std::size_t d = 0; d < n; ++d) lane[d] += c * cost[d];
-        }
-    };
+    unit_prices(wave, shader_, shader_max_.data(), nullptr);
+    unit_prices(wave, rt_, rt_max_.data(), rt_sum_.data());
     std::uint32_t max_calls = 0, active_lane_rounds = 0;
     for (const LaneWork& l : wave.lanes) {
-        lane_cost(l, shader_);
-        for (std::size_t d = 0; d < n; ++d) shader_max_[d] = std::max(shader_max_[d], lane[d]);
-        lane_cost(l, rt_);
-        for (std::size_t d = 0; d < n; ++d) rt_sum_[d] += lane[d], rt_max_[d] = std::max(rt_max_[d], lane[d]);
         max_calls = std::max(max_calls, l.calls);
         active_lane_rounds += l.calls;
     }

@@ -1,11 +1,13 @@
 // Pricing each warp wave under the N cost models drawn from one preset's
 // uncertainty (cost_uncertainty.h) at once. Calling price_wave N times per
-// wave made the quickstart 45 % slower with 64 draws; here the events whose
-// cost no draw changes are summed once per lane, the changed ones (a few)
-// are applied to all draws in loops over draws the compiler vectorizes, and
-// the program rounds are priced once when no draw changes a program cost.
-// Same formulas as price_wave (execution_model.h); only the summation order
-// of a lane's events differs (unchanged events first).
+// wave made the quickstart 45 % slower with 64 draws. Here, per unit (shader,
+// RT), the events no draw changes are summed once per lane; a lane whose
+// counts of the changed events and fixed sum are all <= another lane's can
+// never be the slowest under any draw (costs are >= 0), so only the few
+// undominated lanes are priced per draw, and the lanes' sum comes from the
+// summed counts. Program rounds are priced once when no draw changes a
+// program cost. Same formulas as price_wave (execution_model.h); only the
+// summation order differs (unchanged events first).
 #pragma once
 
 #include "sim/hardware/warp_pricing.h"
@@ -43,8 +45,10 @@ private:
     bool programs_change_ = false;
     ProgramPrices base_prices_;         // programs priced once when no draw changes them
     std::vector<double> profile_price_; // [id * D + d] when programs change
-    // Scratch, per draw.
-    std::vector<double> lane_, shader_max_, rt_max_, rt_sum_, worst_;
+    // max (slowest lane) and, unless null, sum over the wave's lanes of unit u, per draw.
+    void unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum);
+    // Scratch: per draw; the undominated lanes (fixed sum, then the changed counts).
+    std::vector<double> shader_max_, rt_max_, rt_sum_, lane_, worst_, cand_, counts_;
 };
 
 }  // namespace rtc
