@@ -33,6 +33,15 @@ def _fmt(x, digits=3):
 
 
 # -- tables and sweeps -----------------------------------------------------------
+def _speedup_text(r, method, preset):
+    """"2.86x [2.61-3.10]", as the terminal table writes it (no interval: "2.86x")."""
+    s = r.speedup(method, preset)
+    if not s:
+        return "n/a"
+    i = r.speedup_interval(method, preset)
+    return f"{s:.2f}x" + (f" [{i[0]:.2f}-{i[1]:.2f}]" if i else "")
+
+
 def speedup_table(runs, preset=None, title=None):
     """One row per run: rays, cycles and IS calls per ray of each method,
     speedup of each method over the baseline, AABB/OBB area, memory overhead."""
@@ -50,7 +59,7 @@ def speedup_table(runs, preset=None, title=None):
         row = [r.label, r.kind, f"{r.primitives:,}", f"{rays:,}" if rays else "-"]
         row += [_fmt(r.cycles_per_ray(m, preset), 4) if m in have else "-" for m in methods]
         row += [_fmt(r.is_per_ray(m), 4) if m in have else "-" for m in methods]
-        row += [f"{s:.2f}x" if (s := r.speedup(m, preset)) else "n/a" for m in others]
+        row += [_speedup_text(r, m, preset) for m in others]
         row.append(_fmt(r.area_ratio(), 3))
         row += [f"{o:.0f}%" if (o := r.memory_overhead(m)) is not None else "-" for m in others]
         rows.append(row)
@@ -84,12 +93,16 @@ def speedup_vs_axis(runs, axis, preset=None, method=None, title=None, log_x=None
             rest = ", ".join(f"{k}={v}" for k, v in r.sweep_point.items() if k != axis)
             key = rest if len(methods) == 1 else (f"{m}, {rest}" if rest else m)
             s = r.speedup(m, preset)
-            series.setdefault(key or m, []).append((r.sweep_point[axis], s if s else math.nan))
+            low, high = (r.speedup_interval(m, preset) if s else None) or (math.nan, math.nan)
+            series.setdefault(key or m, []).append((r.sweep_point[axis], s if s else math.nan, low, high))
     fig = Figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.add_subplot()
     for key, pts in series.items():
         pts.sort()
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=key)
+        line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=key)
+        if any(not math.isnan(p[2]) for p in pts):  # the 90 % interval of the draws, as a band
+            ax.fill_between([p[0] for p in pts], [p[2] for p in pts], [p[3] for p in pts],
+                            color=line.get_color(), alpha=0.18, linewidth=0)
     xs = [p[0] for pts in series.values() for p in pts]
     if log_x or (log_x is None and min(xs) > 0 and max(xs) / min(xs) >= 100):
         ax.set_xscale("log")

@@ -139,6 +139,19 @@ class Report:
         table = self.data.get(f"speedup_over_{self.baseline}") or {}
         return (table.get(method) or {}).get(self._preset(preset))
 
+    def speedup_interval(self, method=None, preset=None):
+        """The 90 % interval (low, high) of speedup(method, preset) over draws
+        of the preset's fitted costs (calibration uncertainty only), or None
+        when the preset has no covariance: `uncertainty_note(preset)` says why."""
+        method = method or self.others[0]
+        table = self.data.get(f"speedup_interval_over_{self.baseline}") or {}
+        pair = (table.get(method) or {}).get(self._preset(preset))
+        return tuple(pair) if pair else None
+
+    def uncertainty_note(self, preset=None):
+        """What the preset's intervals are, or why it has none."""
+        return (self.data.get("uncertainty") or {}).get(self._preset(preset))
+
     def area_ratio(self, tight=False):
         """Sum of primitive AABB areas over sum of OBB areas (paper or tight OBBs)."""
         a = self.data["scene"]["surface_area"]

@@ -8,6 +8,7 @@
 // r_i = sqrt(w_i) * (log C_ref - log C_obb - log target) then has the exact
 // derivative sqrt(w_i) * (a_ref_k / C_ref - a_obb_k / C_obb).
 #include "sim/calibrate/calibrate.h"
+#include "sim/calibrate/calibrate_report.h"
 #include "sim/calibrate/linear_algebra.h"
 
 #include <algorithm>
@@ -253,15 +254,6 @@ double predicted_speedup(const CalibrationRun& run, const CostModel& model) {
     return price(run.ref, model).total_cycles / price(run.obb, model).total_cycles;
 }
 
-std::string parameter_label(const FitParameter& p) {
-    std::string s;
-    for (Event e : p.events) {
-        if (!s.empty()) s += '+';
-        s += event_name(e);
-    }
-    return s;
-}
-
 CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostModel& start,
                             const std::vector<FitParameter>& params,
                             const CalibrationOptions& options) {
@@ -308,6 +300,7 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
 
     // The fitted model, with provenance on every fitted event.
     res.model = start;
+    res.model.uncertainty.reset();  // the start's no longer applies; set below
     res.model.name = options.name.empty() ? start.name + "-calibrated" : options.name;
     if (!options.description.empty()) res.model.description = options.description;
     for (std::size_t k = 0; k < np; ++k)
@@ -371,12 +364,12 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
     Mat V;
     eigen_symmetric(B, w, V);
     const double wmax = w.empty() ? 0.0 : *std::max_element(w.begin(), w.end());
-    Vec var(cand.size(), 0.0);  // diagonal of the pseudo-inverse of B
+    Mat pinv(cand.size(), Vec(cand.size(), 0.0));  // the pseudo-inverse of B
     for (std::size_t j = 0; j < w.size(); ++j) {
         const bool null_dir = w[j] <= 1e-12 * wmax;
         for (std::size_t a = 0; a < cand.size(); ++a) {
             if (null_dir && std::abs(V[a][j]) > 0.2) res.parameters[cand[a]].unidentifiable = true;
-            if (!null_dir) var[a] += V[a][j] * V[a][j] / w[j];
+            for (std::size_t c = 0; c < cand.size() && !null_dir; ++c) pinv[a][c] += V[a][j] * V[c][j] / w[j];
         }
     }
     for (std::size_t k : cand) res.free_parameters += res.parameters[k].unidentifiable ? 0 : 1;
@@ -385,11 +378,23 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
     const double sigma2 = res.degrees_of_freedom > 0 && residuals(rows, theta, rfin, fit)
                               ? 2.0 * half_ssr(rfin) / res.degrees_of_freedom
                               : std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::size_t> fr;  // indices into cand of the free parameters
     for (std::size_t a = 0; a < cand.size(); ++a) {
         ParameterFit& pf = res.parameters[cand[a]];
         pf.std_error = pf.unidentifiable ? std::numeric_limits<double>::infinity()
-                                         : s[cand[a]] * std::sqrt(sigma2 * var[a]);
+                                         : s[cand[a]] * std::sqrt(sigma2 * pinv[a][a]);
+        pf.free = !pf.unidentifiable && std::isfinite(pf.std_error);
+        if (pf.free) fr.push_back(a);
     }
+    // Cov(theta) = S sigma^2 B^+ S; over theta_a theta_c it is the covariance
+    // of log theta to first order (free parameters are positive: not at lo >= 0).
+    for (std::size_t a : fr) {
+        res.log_covariance.emplace_back();
+        for (std::size_t c : fr)
+            res.log_covariance.back().push_back(sigma2 * pinv[a][c] * s[cand[a]] * s[cand[c]] /
+                                                (theta[cand[a]] * theta[cand[c]]));
+    }
+    res.model.uncertainty = calibration_uncertainty(res);
     for (ParameterFit& pf : res.parameters) {
         std::string n = pf.tie == Tie::Scale ? "scale factor on the start costs" : "";
         const auto add = [&n](const std::string& x) { n += (n.empty() ? "" : "; ") + x; };

@@ -79,6 +79,7 @@ struct ParameterFit {
     double sensitivity = 0.0;
     bool at_lower = false, at_upper = false;
     bool unidentifiable = false;  // no influence, or a near-null direction of J
+    bool free = false;            // has a finite std. error: a row of log_covariance
     std::string note;             // human-readable summary of the flags
 };
 
@@ -93,6 +94,10 @@ struct CalibrationResult {
     int degrees_of_freedom = 0;  // observations - free_parameters (may be <= 0)
     int iterations = 0;
     bool converged = false;
+    // sigma^2 (J^T J)^+ at the optimum, as the covariance of log(fitted) over
+    // the free parameters in their order (empty when dof <= 0 or none is
+    // free). model.uncertainty carries it into the fitted preset.
+    std::vector<std::vector<double>> log_covariance;
 };
 
 // Throws std::invalid_argument on unusable input (no runs, a non-positive

@@ -3,6 +3,7 @@
 #include "sim/calibrate/calibrate_report.h"
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 
 namespace rtc {
@@ -23,6 +24,26 @@ namespace {
 }
 
 }  // namespace
+
+std::string parameter_label(const FitParameter& p) {
+    std::string s;
+    for (Event e : p.events) {
+        if (!s.empty()) s += '+';
+        s += event_name(e);
+    }
+    return s;
+}
+
+std::optional<CostUncertainty> calibration_uncertainty(const CalibrationResult& result) {
+    if (result.log_covariance.empty()) return std::nullopt;  // no free parameter, or dof <= 0: nothing to draw
+    CostUncertainty u;
+    u.source = "Gauss-Newton covariance sigma^2 (J^T J)^+ of the fit at its optimum, of log(value) over the free "
+               "parameters (rtcsim calibrate, docs/calibration.md)";
+    for (const ParameterFit& p : result.parameters)
+        u.parameters.push_back({p.events, p.tie == Tie::Scale, p.fitted, p.lo, p.hi, p.free});
+    u.covariance = result.log_covariance;
+    return u;
+}
 
 std::string calibrated_preset_json(const CalibrationResult& result) {
     return cost_model_to_json(result.model);

@@ -5,11 +5,16 @@
 
 #include "sim/calibrate/calibrate.h"
 
+#include <optional>
 #include <string>
 
 namespace rtc {
 
-// The fitted model in the configs/hw preset format (cost_model_to_json).
+// The fitted parameters and their covariance as a preset's "uncertainty"
+// block (cost_uncertainty.h); nullopt when the fit has no covariance.
+[[nodiscard]] std::optional<CostUncertainty> calibration_uncertainty(const CalibrationResult& result);
+// The fitted model in the configs/hw preset format (cost_model_to_json), with
+// its "uncertainty" block when the fit has a covariance.
 [[nodiscard]] std::string calibrated_preset_json(const CalibrationResult& result);
 // "| run | target | start | fitted | error % |"
 [[nodiscard]] std::string calibration_runs_markdown(const CalibrationResult& result);

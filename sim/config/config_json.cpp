@@ -78,6 +78,7 @@ ojson run_config_to_json(const RunConfig& c) {
     j["memory"] = absolute(c.memory_preset);
     j["workload"] = workload_to_json(c.workload);
     j["output"] = {{"images", c.output.images}, {"rays", c.output.write_rays}, {"hits", c.output.write_hits}};
+    j["uncertainty"] = {{"draws", c.uncertainty.draws}, {"seed", c.uncertainty.seed}};
     if (!c.calibrate.is_null()) j["calibrate"] = c.calibrate;
     if (!c.break_even.empty()) {
         ojson list = ojson::array();

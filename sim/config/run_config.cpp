@@ -43,7 +43,7 @@ BreakEvenAxis read_axis(const JsonReader& r) {
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
     const JsonReader r(config, file);
     r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
-                  "cluster", "cost", "memory", "workload", "output", "calibrate", "break_even"});
+                  "cluster", "cost", "memory", "workload", "output", "uncertainty", "calibrate", "break_even"});
     RunConfig c;
     c.file = file;
     c.name = r.string("name", std::filesystem::path(file).stem().string());
@@ -144,6 +144,12 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         c.output.arrays = o.boolean("arrays", true);
         c.output.write_rays = o.boolean("rays", false);
         c.output.write_hits = o.boolean("hits", false);
+    }
+    if (r.has("uncertainty")) {
+        const JsonReader u = r.child("uncertainty");
+        u.allow_only({"draws", "seed"});
+        c.uncertainty.draws = static_cast<int>(u.integer("draws", 64, 0, 4096));
+        c.uncertainty.seed = static_cast<std::uint64_t>(u.integer("seed", 1, 0, 1LL << 53));
     }
     if (r.has("calibrate")) c.calibrate = config["calibrate"];
     if (r.has("break_even")) {

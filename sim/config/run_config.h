@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,13 @@ struct OutputOptions {
     bool arrays = true;       // per-pixel (or per-ray) counts and cycles as .npy (docs/outputs.md)
     bool write_rays = false;  // rays.bin: every traced ray (32 B each)
     bool write_hits = false;  // hits_<method>.bin: each method's hit per ray (12 B each)
+};
+
+// Intervals on speedups (docs/calibration.md): every cost preset with an
+// "uncertainty" block is also priced under `draws` cost models drawn from it.
+struct UncertaintyOptions {
+    int draws = 64;           // 0: no intervals
+    std::uint64_t seed = 1;   // the same seed gives the same draws
 };
 
 // A break-even map (sim/report): sweep the cost of two event groups of one
@@ -50,6 +58,7 @@ struct RunConfig {
     std::string memory_preset = "memory-optix7";
     WorkloadDesc workload;
     OutputOptions output;
+    UncertaintyOptions uncertainty;
     nlohmann::json calibrate;         // optional `calibrate` block (null when absent)
     std::vector<BreakEvenSpec> break_even;  // optional `break_even` list
 };

@@ -12,6 +12,7 @@
 #include "sim/util/progress.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"
+#include "sim/hardware/uncertainty/draw_pricing.h"
 #include "sim/hardware/warp_trace.h"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ struct FrameResult {
     std::uint64_t rays_traced = 0;
     double trace_seconds = 0.0;
     // SIMT execution (when FrameOptions::warp is set):
-    std::vector<WarpTotals> warp;           // per FrameOptions::warp_presets entry
+    std::vector<WarpTotals> warp;           // per FrameOptions::warp_presets entry, then per draw of warp_draws
     std::vector<float> pixel_warp_cycles;   // first warp preset: per pixel, its share of its waves
     std::vector<std::vector<float>> more_pixel_warp_cycles;  // warp presets 1, 2, ...: the same
     std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves
@@ -78,6 +79,9 @@ struct FrameOptions {
     // wave for re-pricing (calibration).
     const ExecutionModel* warp = nullptr;
     std::vector<const CostModel*> warp_presets;
+    // Cost models drawn from the warp presets' uncertainty (run intervals):
+    // priced per wave like the presets, but only their totals are kept.
+    std::vector<DrawSet> warp_draws;
     bool record_warps = false;
     // Sharded runs (sim/shard): trace only band `band` of `bands` contiguous
     // bands of the frame's tasks and keep each task's totals; 0 bands: the

@@ -22,6 +22,8 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     const ExecutionModel& x = *fo.warp;
     const unsigned threads = fo.threads ? fo.threads : hardware_threads();
     const std::size_t presets = fo.warp_presets.size();
+    std::size_t priced = presets;  // then the draws, which keep totals only
+    for (const DrawSet& set : fo.warp_draws) priced += set.draws.size();
     FrameResult out;
     const auto tw = static_cast<std::uint32_t>(x.tile_width), th = static_cast<std::uint32_t>(x.tile_height);
     const std::size_t rays_per_task = static_cast<std::size_t>(x.warp_width) * 128;
@@ -46,10 +48,12 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         CallProfiles profiles;
         std::vector<ProgramPrices> prices;  // per preset
         std::vector<WaveWork> waves;        // per bounce
+        std::vector<WaveDrawPricer> draws;  // per FrameOptions::warp_draws set
     };
     std::vector<PerThread> per_thread(threads);
     for (PerThread& p : per_thread) {
         p.scratch.profiles = &p.profiles;
+        for (const DrawSet& set : fo.warp_draws) p.draws.emplace_back(set);
         p.prices.resize(presets);
     }
     if (frame.from_camera) {
@@ -73,7 +77,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     parallel_for(last - first, threads, [&, first = first](std::size_t slot, unsigned thread) {
         const std::size_t task = first + slot;
         Task& t = task_out[slot];
-        t.warp.resize(presets);
+        t.warp.resize(priced);
         PerThread& mine = per_thread[thread];
         TraceScratch& sc = mine.scratch;
         std::vector<WaveWork>& wv = mine.waves;
@@ -95,6 +99,8 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         const auto flush_waves = [&] {
             for (WaveWork& w : wv) {
                 if (w.lanes.empty()) continue;
+                for (std::size_t i = 0, slot = presets; i < mine.draws.size(); slot += fo.warp_draws[i++].draws.size())
+                    mine.draws[i].add(w, &t.warp[slot]);
                 for (std::size_t p = 0; p < presets; ++p) {
                     const WavePrice price = price_wave(w, *fo.warp_presets[p], mine.prices[p]);
                     t.warp[p].add(price, w.lanes.size());
@@ -176,11 +182,11 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         progress.advance(1);
     }, /*grain=*/1);
     progress.finish();
-    out.warp.resize(presets);
+    out.warp.resize(priced);
     for (Task& t : task_out) {  // fixed order: task 0, 1, 2, ...
         out.totals += t.totals;
         out.rays_traced += t.rays_traced;
-        for (std::size_t p = 0; p < presets; ++p) out.warp[p] += t.warp[p];
+        for (std::size_t p = 0; p < priced; ++p) out.warp[p] += t.warp[p];
         if (fo.record_warps) out.warp_trace.append(t.trace);
         out.rays.insert(out.rays.end(), t.rays.begin(), t.rays.end());
         out.hits.insert(out.hits.end(), t.hits.begin(), t.hits.end());

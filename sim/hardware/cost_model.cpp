@@ -59,7 +59,7 @@ double price_cycles(const RayCounts& counts, const CostModel& model) {
 CostModel parse_cost_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "features", "execution", "fitted_on", "cycles"});
+    r.allow_only({"name", "description", "features", "execution", "fitted_on", "cycles", "uncertainty"});
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
@@ -110,6 +110,7 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
         m.cycles[i] = e.number("value", std::nullopt, 0.0, 1e9);
         m.source[i] = e.string("source", std::nullopt);
     }
+    if (r.has("uncertainty")) m.uncertainty = parse_cost_uncertainty(r.child("uncertainty"), m.cycles);
     return m;
 }
 
@@ -143,6 +144,7 @@ std::string cost_model_to_json(const CostModel& m) {
         if (m.prices(static_cast<Event>(i)))
             cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};
     j["cycles"] = cycles;
+    if (m.uncertainty) j["uncertainty"] = cost_uncertainty_to_json(*m.uncertainty);
     return j.dump(2) + "\n";
 }
 

@@ -5,9 +5,11 @@
 
 #include "core/sinks.h"
 #include "sim/hardware/execution_model.h"
+#include "sim/hardware/uncertainty/cost_uncertainty.h"
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +46,7 @@ struct CostModel {
 
     // Whether the preset prices event `e` (false: the other program group's).
     [[nodiscard]] bool prices(Event e) const;
+    std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
 
     [[nodiscard]] bool has_feature(std::string_view f) const;
     // The first of `needs` this preset lacks, or empty.

@@ -257,9 +257,15 @@ std::string line_plot_svg(const LinePlot& plot) {
         const PlotSeries& s = plot.series[i];
         if (s.x.size() != s.y.size())
             throw std::invalid_argument("line_plot_svg: series '" + s.name + "' has x and y of different lengths");
+        const bool band = !s.y_low.empty();
+        if (band && (s.y_low.size() != s.y.size() || s.y_high.size() != s.y.size()))
+            throw std::invalid_argument("line_plot_svg: series '" + s.name + "' has an interval of another length");
         for (std::size_t k = 0; k < s.x.size(); ++k)
-            if (usable(s.x[k], plot.axes.log_x) && usable(s.y[k], plot.axes.log_y))
+            if (usable(s.x[k], plot.axes.log_x) && usable(s.y[k], plot.axes.log_y)) {
                 xs.push_back(s.x[k]), ys.push_back(s.y[k]);
+                for (double v : {band ? s.y_low[k] : NAN, band ? s.y_high[k] : NAN})
+                    if (usable(v, plot.axes.log_y)) xs.push_back(s.x[k]), ys.push_back(v);
+            }
         legend.push_back({s.name, series_color(i, plot.series.size()), false, plot.markers, plot.lines});
     }
     const Frame f(plot.axes, xs, ys, legend);
@@ -268,7 +274,28 @@ std::string line_plot_svg(const LinePlot& plot) {
     for (std::size_t i = 0; i < plot.series.size(); ++i) {
         const PlotSeries& s = plot.series[i];
         const std::string color = series_color(i, plot.series.size());
-        std::vector<std::pair<double, double>> run;
+        std::vector<std::pair<double, double>> run, upper, lower;
+        const auto flush_band = [&] {  // upper edge left to right, lower edge back
+            upper.insert(upper.end(), lower.rbegin(), lower.rend());
+            std::string pts;
+            for (const auto& [x, y] : upper) pts.append(pts.empty() ? "" : " ").append(num(x)).append(",").append(num(y));
+            if (upper.size() >= 4) svg += "<polygon fill=\"" + color + "\" fill-opacity=\"0.18\" stroke=\"none\" points=\"" + pts + "\"/>\n";
+            upper.clear(), lower.clear();
+        };
+        for (std::size_t k = 0; k < s.y_low.size(); ++k) {
+            if (!usable(s.x[k], plot.axes.log_x) || !usable(s.y_low[k], plot.axes.log_y) ||
+                !usable(s.y_high[k], plot.axes.log_y)) {
+                flush_band();
+                continue;
+            }
+            upper.emplace_back(f.px(s.x[k]), f.py(s.y_high[k]));
+            lower.emplace_back(f.px(s.x[k]), f.py(s.y_low[k]));
+            if (!plot.lines) {  // categories: an error bar per point
+                svg += polyline({upper.back(), lower.back()}, color, false);
+                upper.clear(), lower.clear();
+            }
+        }
+        flush_band();
         std::string dots;
         auto flush = [&] {
             if (plot.lines && run.size() >= 2) svg += polyline(run, color, false);

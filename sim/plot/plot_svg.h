@@ -17,6 +17,10 @@ struct PlotSeries {
     std::string name;
     std::vector<double> x;  // same length as y; NaN points break the line
     std::vector<double> y;
+    // Optional interval around y (both empty, or as long as y; NaN: none at
+    // that point): a shaded band when points are joined, else error bars.
+    // (Default-initialized: the series written {name, x, y} stay valid.)
+    std::vector<double> y_low = {}, y_high = {};
 };
 
 struct PlotAxes {

@@ -127,6 +127,12 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
     return j;
 }
 
+// "2.86x [2.61-3.10]": the speedup and its 90 % interval, when there is one.
+std::string format_speedup_interval(double s, const std::optional<std::array<double, 2>>& i) {
+    if (!i) return format_speedup(s);
+    return format_speedup(s) + " [" + format_sig((*i)[0], 3) + "-" + format_sig((*i)[1], 3) + "]";
+}
+
 }  // namespace
 
 nlohmann::ordered_json report_json(const RunResult& run) {
@@ -171,18 +177,32 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     for (const MethodRun& m : run.methods) methods[m.method] = method_json(m, run);
     j["methods"] = methods;
     nlohmann::ordered_json speedups = nlohmann::ordered_json::object(), overhead = nlohmann::ordered_json::object();
+    nlohmann::ordered_json intervals = nlohmann::ordered_json::object();
     for (const MethodRun& m : run.methods) {
         if (m.method == run.config.baseline) continue;
-        nlohmann::ordered_json per_preset;
+        nlohmann::ordered_json per_preset, interval_per_preset = nlohmann::ordered_json::object();
         for (std::size_t p = 0; p < run.costs.size(); ++p) {
             const double s = run.speedup(m.method, p);
             per_preset[run.costs[p].name] = s > 0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json();
+            // Presets without draws get no entry; "uncertainty" below says why.
+            if (const auto i = run.speedup_interval(m.method, p)) interval_per_preset[run.costs[p].name] = *i;
         }
         speedups[m.method] = per_preset;
+        intervals[m.method] = interval_per_preset;
         const double o = run.memory_overhead_percent(m.method);
         if (!std::isnan(o)) overhead[m.method] = o;
     }
     j["speedup_over_" + run.config.baseline] = speedups;
+    j["speedup_interval_over_" + run.config.baseline] = intervals;
+    nlohmann::ordered_json why = nlohmann::ordered_json::object();
+    for (std::size_t p = 0; p < run.costs.size(); ++p) {
+        const std::string reason = run.no_interval_reason(p);
+        why[run.costs[p].name] = !reason.empty() ? reason
+                                 : "90 % interval (5th-95th percentile) over " + std::to_string(run.config.uncertainty.draws) +
+                                       " draws of the preset's fitted costs from its covariance: calibration uncertainty only, "
+                                       "not model-structure error";
+    }
+    j["uncertainty"] = why;
     j["memory_overhead_percent"] = overhead;
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
@@ -237,7 +257,7 @@ Table summary_table(const std::vector<RunResult>& runs) {
         }
         for (const std::string& n : others) {
             const double s = r.speedup(n);
-            row.push_back(s > 0 ? format_speedup(s) : "n/a");
+            row.push_back(s > 0 ? format_speedup_interval(s, r.speedup_interval(n)) : "n/a");
         }
         row.push_back(format_sig(r.areas.ratio_paper(), 3));
         for (const std::string& n : names) {
@@ -282,7 +302,7 @@ Table speedup_table(const std::vector<RunResult>& runs) {
                     continue;
                 }
                 const double s = r.speedup(m.method, p);
-                row.push_back(s > 0 ? format_speedup(s) : "n/a");
+                row.push_back(s > 0 ? format_speedup_interval(s, r.speedup_interval(m.method, p)) : "n/a");
             }
             t.add_row(row);
         }

@@ -177,7 +177,7 @@ std::string values_text(const RunResult& r, const std::vector<SweepAxis>& axes, 
 PlotSeries& series_named(std::vector<PlotSeries>& list, const std::string& name) {
     for (PlotSeries& s : list)
         if (s.name == name) return s;
-    list.push_back({name, {}, {}});
+    list.push_back({name, {}, {}, {}, {}});
     return list.back();
 }
 
@@ -215,6 +215,8 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
         std::function<double(const RunResult&, const std::string&)> value;
         double flat;
         bool log_y_beyond_decade;
+        // The value's 90 % interval (a band around the curve), when it has one.
+        std::function<std::optional<std::array<double, 2>>(const RunResult&, const std::string&)> interval;
     };
     const bool memory_swept = std::any_of(runs.begin(), runs.end(), [&](const RunResult& r) {
         return r.memory.name != runs.front().memory.name;
@@ -225,12 +227,13 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
     all.insert(all.begin(), bname);
     const Quantity quantities[] = {
         {"speedup_vs_", "speedup of " + who + " over " + bname + " vs ", y_label, preset_text, &others,
-         [](const RunResult& r, const std::string& m) { return r.speedup(m); }, 1e-9, false},
+         [](const RunResult& r, const std::string& m) { return r.speedup(m); }, 1e-9, false,
+         [](const RunResult& r, const std::string& m) { return r.speedup_interval(m); }},
         {"memory_vs_", "total memory of each method vs ", "memory (MiB)", memory_text,
          &all, [](const RunResult& r, const std::string& m) {
              const MethodRun* run = r.find(m);
              return run && run->runnable ? run->memory.total() / (1024.0 * 1024.0) : 0.0;
-         }, 0.01, true}};
+         }, 0.01, true, nullptr}};
     for (const Quantity& q : quantities) {
         const bool single = q.methods->size() == 1;
         // Series over axis `ai`, split by the other axes in `use` (a point
@@ -247,6 +250,9 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
                     if (std::find(ps.x.begin(), ps.x.end(), x) != ps.x.end()) continue;
                     ps.x.push_back(x);
                     ps.y.push_back(v > 0 ? v : nan);
+                    const auto i = q.interval && v > 0 ? q.interval(r, method) : std::nullopt;
+                    ps.y_low.push_back(i ? (*i)[0] : nan);
+                    ps.y_high.push_back(i ? (*i)[1] : nan);
                 }
             return series;
         };
@@ -282,8 +288,10 @@ std::vector<std::string> write_sweep_plots(const std::vector<RunResult>& runs, c
                     std::vector<std::size_t> order(s.x.size());
                     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
                     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
-                    PlotSeries sorted{s.name, {}, {}};
-                    for (std::size_t i : order) sorted.x.push_back(s.x[i]), sorted.y.push_back(s.y[i]);
+                    PlotSeries sorted{s.name, {}, {}, {}, {}};
+                    for (std::size_t i : order)
+                        sorted.x.push_back(s.x[i]), sorted.y.push_back(s.y[i]), sorted.y_low.push_back(s.y_low[i]),
+                            sorted.y_high.push_back(s.y_high[i]);
                     s = std::move(sorted);
                 }
             plot.series = std::move(series);

@@ -6,6 +6,7 @@
 #include "sim/workload/ray_file.h"
 #include "sim/config/scene_config.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -56,13 +57,43 @@ std::vector<std::size_t> load_presets(RunResult& r, const RunConfig& c, std::vec
     return warp_index;
 }
 
+// The cost models drawn from each preset's uncertainty block (run
+// intervals), and where the warp presets' draws sit among a frame's warp
+// totals: after the presets, in preset order (slot SIZE_MAX: none).
+struct Draws {
+    std::vector<std::vector<CostModel>> models;  // per preset
+    std::vector<std::size_t> warp_slot;          // per preset: its first draw's index in FrameResult::warp
+    std::vector<DrawSet> warp_sets;              // FrameOptions::warp_draws
+};
+
+Draws make_draws(const std::vector<CostModel>& costs, const UncertaintyOptions& u,
+                 const std::vector<std::size_t>& warp_index, std::size_t warp_presets) {
+    Draws d;
+    d.warp_slot.assign(costs.size(), SIZE_MAX);
+    for (std::size_t k = 0; k < costs.size(); ++k)
+        d.models.push_back(draw_cost_models(costs[k], static_cast<std::size_t>(u.draws), u.seed));
+    for (std::size_t k = 0; k < costs.size(); ++k) {
+        if (warp_index[k] == SIZE_MAX || d.models[k].empty()) continue;
+        d.warp_slot[k] = warp_presets;
+        for (const DrawSet& s : d.warp_sets) d.warp_slot[k] += s.draws.size();
+        d.warp_sets.push_back({&costs[k], {}});
+        for (const CostModel& m : d.models[k]) d.warp_sets.back().draws.push_back(&m);
+    }
+    return d;
+}
+
 // Prices a traced method under every cost preset of `r` and its structures
 // under r's memory preset. `warp_index` as load_presets returns it; the
 // frame's warp totals are in that order.
 void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
-                  const std::vector<std::size_t>& warp_index) {
+                  const std::vector<std::size_t>& warp_index, const Draws& draws) {
     m.priced.clear();
     m.warp.clear();
+    m.draw_cycles.assign(r.costs.size(), {});
+    for (std::size_t k = 0; k < r.costs.size(); ++k)
+        for (std::size_t d = 0; d < draws.models[k].size(); ++d)
+            m.draw_cycles[k].push_back(draws.warp_slot[k] != SIZE_MAX ? m.frame.warp[draws.warp_slot[k] + d].cycles()
+                                                                     : price(m.frame.totals, draws.models[k][d]).total_cycles);
     for (std::size_t k = 0; k < r.costs.size(); ++k) {
         const CostModel& cost = r.costs[k];
         PricedRun p = price(m.frame.totals, cost);
@@ -77,6 +108,11 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
         m.priced.push_back(std::move(p));
     }
     m.memory = price_memory(m.structures, r.memory, r.config.kind, r.primitives, r.mesh_vertices, r.mesh_triangles);
+}
+
+std::size_t old_warp_presets(const std::vector<std::size_t>& warp_index) {
+    return static_cast<std::size_t>(std::count_if(warp_index.begin(), warp_index.end(),
+                                                  [](std::size_t i) { return i != SIZE_MAX; }));
 }
 
 }  // namespace
@@ -97,6 +133,26 @@ double RunResult::speedup(std::string_view name, std::size_t preset) const {
     return base->priced[preset].total_cycles / other->priced[preset].total_cycles;
 }
 
+std::optional<std::array<double, 2>> RunResult::speedup_interval(std::string_view name, std::size_t preset) const {
+    const double point = speedup(name, preset);
+    const MethodRun* base = baseline();
+    const MethodRun* other = find(name);
+    if (point <= 0.0 || preset >= base->draw_cycles.size() || preset >= other->draw_cycles.size() ||
+        base->draw_cycles[preset].empty() || base->draw_cycles[preset].size() != other->draw_cycles[preset].size())
+        return std::nullopt;
+    std::vector<double> s;  // draw d prices both methods with the same costs
+    for (std::size_t d = 0; d < base->draw_cycles[preset].size(); ++d)
+        s.push_back(base->draw_cycles[preset][d] / other->draw_cycles[preset][d]);
+    return interval_90(std::move(s), point);
+}
+
+std::string RunResult::no_interval_reason(std::size_t preset) const {
+    if (preset >= costs.size()) return "no such preset";
+    if (!costs[preset].uncertainty) return "no covariance in the preset (a guess): no interval";
+    if (config.uncertainty.draws == 0) return "uncertainty.draws is 0: no interval";
+    return "";
+}
+
 double RunResult::memory_overhead_percent(std::string_view name) const {
     const MethodRun* base = baseline();
     const MethodRun* other = find(name);
@@ -113,6 +169,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.effective_config = effective;
     std::vector<const CostModel*> warp_presets;
     const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
 
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
@@ -166,6 +223,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         fo.record_rays = c.output.write_rays && !rays_written;
         fo.warp = r.warp_grouping ? &*r.warp_grouping : nullptr;
         fo.warp_presets = warp_presets;
+        fo.warp_draws = draws.warp_sets;
         fo.record_warps = ctx.record_warps && r.warp_grouping.has_value();
         fo.band = ctx.band;
         fo.bands = ctx.bands;
@@ -185,7 +243,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
             m.frame.hits.clear();
             m.frame.hits.shrink_to_fit();
         }
-        price_method(m, r, method, warp_index);
+        price_method(m, r, method, warp_index, draws);
         r.methods.push_back(std::move(m));
     }
     r.total_seconds = seconds_since(t_start);
@@ -214,6 +272,12 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
     const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
     if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
         return std::nullopt;
+    const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
+    std::vector<std::size_t> traced_warp_index;
+    for (std::size_t k = 0, tw = 0; k < traced.costs.size(); ++k)
+        traced_warp_index.push_back(traced.costs[k].execution.warp() ? tw++ : SIZE_MAX);
+    const Draws traced_draws = make_draws(traced.costs, traced.config.uncertainty, traced_warp_index,
+                                          old_warp_presets(traced_warp_index));
     for (MethodRun& m : r.methods) {
         const MethodEntry& method = *find_method(m.method);
         const MethodRun& old = *traced.find(m.method);
@@ -252,8 +316,26 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
             if (old.frame.warp_trace.waves() == 0) return std::nullopt;
             warp[w] = old.frame.warp_trace.price(*warp_presets[w]);
         }
+        // The warp draws: copied where the traced run priced the same preset's
+        // (the uncertainty options are part of the trace: same_trace), else
+        // re-priced from the recorded waves.
+        for (std::size_t k = 0; k < r.costs.size(); ++k) {
+            if (draws.warp_slot[k] == SIZE_MAX) continue;
+            std::size_t old_slot = SIZE_MAX;
+            for (std::size_t j = 0; j < traced.costs.size(); ++j)
+                if (traced.config.cost_presets[j] == c.cost_presets[k] && traced_draws.warp_slot[j] != SIZE_MAX)
+                    old_slot = traced_draws.warp_slot[j];
+            for (std::size_t d = 0; d < draws.models[k].size(); ++d) {
+                if (old_slot != SIZE_MAX) {
+                    warp.push_back(old.frame.warp[old_slot + d]);
+                    continue;
+                }
+                if (old.frame.warp_trace.waves() == 0) return std::nullopt;
+                warp.push_back(old.frame.warp_trace.price(draws.models[k][d]));
+            }
+        }
         m.frame.warp = std::move(warp);
-        price_method(m, r, method, warp_index);
+        price_method(m, r, method, warp_index, draws);
     }
     r.total_seconds = seconds_since(t_start);
     return r;

@@ -11,6 +11,7 @@
 #include "sim/config/run_config.h"
 #include "sim/run/work_estimate.h"
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -30,6 +31,9 @@ struct MethodRun {
     FrameResult frame;
     std::vector<PricedRun> priced;     // one per cost preset, in config order
     std::vector<WarpTotals> warp;      // per cost preset: the warp model's figures (warp presets only)
+    // Per cost preset: total cycles under each cost model drawn from its
+    // uncertainty block (empty: the preset has none, or draws are off).
+    std::vector<std::vector<double>> draw_cycles;
     MemoryBreakdown memory;
 };
 
@@ -60,6 +64,12 @@ struct RunResult {
     [[nodiscard]] MethodRun* baseline() { return find(config.baseline); }
     // cycles(baseline) / cycles(method) under preset `preset`; 0 when not available.
     [[nodiscard]] double speedup(std::string_view method, std::size_t preset = 0) const;
+    // The 90 % interval [low, high] of speedup(method, preset) over the
+    // preset's cost draws (cost_uncertainty.h); nullopt without draws or speedup.
+    [[nodiscard]] std::optional<std::array<double, 2>> speedup_interval(std::string_view method,
+                                                                        std::size_t preset = 0) const;
+    // Why preset `preset` gives no intervals ("" when it does).
+    [[nodiscard]] std::string no_interval_reason(std::size_t preset) const;
     // Total memory of `method` over the baseline's, in percent; NaN when not available.
     [[nodiscard]] double memory_overhead_percent(std::string_view method) const;
 };

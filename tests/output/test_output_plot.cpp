@@ -113,3 +113,16 @@ TEST_CASE("output plot: write_text_file failure names the path") {
         CHECK(std::string(e.what()).find(bad) != std::string::npos);
     }
 }
+
+TEST_CASE("output plot: an interval is a shaded band, or error bars on categories") {
+    rtc::LinePlot p;
+    const double nan = std::nan("");
+    p.series.push_back({"s", {1, 2, 3, 4}, {1.0, 2.0, 3.0, 4.0}, {0.9, 1.8, nan, 3.5}, {1.1, 2.3, nan, 4.4}});
+    const std::string svg = rtc::line_plot_svg(p);
+    CHECK(count(svg, "<polygon") == 1);  // points 1-2 (3 has none; 4 alone is no band)
+    CHECK(svg.find("fill-opacity") != std::string::npos);
+    p.lines = false;
+    CHECK(count(rtc::line_plot_svg(p), "<polyline") == 3);  // an error bar per point with an interval
+    p.series[0].y_low.pop_back();
+    CHECK_THROWS_AS((void)rtc::line_plot_svg(p), std::invalid_argument);
+}

@@ -284,3 +284,32 @@ TEST_CASE("calibrate: one-parameter std. error equals sigma / |J| by finite diff
     CHECK(res.parameters[0].std_error == doctest::Approx(std::sqrt(ssr / 7 / jj)).epsilon(1e-5));
     CHECK(res.rms_log_error == doctest::Approx(std::sqrt(ssr / 8)).epsilon(1e-9));
 }
+
+TEST_CASE("calibrate: the fitted preset carries the covariance, and loads back") {
+    auto runs = synthetic_runs(true_model());
+    Lcg rng{7};
+    for (CalibrationRun& r : runs) r.target_speedup *= std::exp(0.05 * (rng.next() - 0.5));
+    std::vector<FitParameter> params = three_parameters();
+    params.push_back({{Event::IsCapsule}, 150, 400, Tie::Value});  // no counts: unidentifiable, not free
+    const CalibrationResult res = calibrate(runs, guess_model(), params);
+    REQUIRE(res.model.uncertainty);
+    const CostUncertainty& u = *res.model.uncertainty;
+    REQUIRE(u.parameters.size() == 4);
+    CHECK_FALSE(u.parameters[3].free);
+    REQUIRE(res.log_covariance.size() == 3);
+    REQUIRE(u.covariance == res.log_covariance);
+    for (std::size_t k = 0; k < 3; ++k) {  // its diagonal is the std. errors, relative
+        CHECK(u.parameters[k].free);
+        const ParameterFit& p = res.parameters[k];
+        CHECK(std::sqrt(u.covariance[k][k]) == doctest::Approx(p.std_error / p.fitted).epsilon(1e-9));
+    }
+    const std::string text = calibrated_preset_json(res);
+    const CostModel back = parse_cost_model(text, "fitted.json");
+    REQUIRE(back.uncertainty);
+    CHECK(back.uncertainty->covariance == u.covariance);
+    CHECK(cost_model_to_json(back) == text);
+    CHECK(draw_cost_models(back, 8, 1).size() == 8);
+    // No degrees of freedom: no covariance, and no block.
+    runs.resize(3);
+    CHECK_FALSE(calibrate(runs, guess_model(), three_parameters()).model.uncertainty);
+}

@@ -1,0 +1,135 @@
+#include "sim/hardware/uncertainty/draw_pricing.h"
+
+#include <algorithm>
+
+namespace rtc {
+
+namespace {
+
+void split_unit(EventUnit unit, const DrawSet& set, std::vector<std::uint8_t>& fixed,
+                std::vector<std::uint8_t>& changed, std::vector<double>& cost) {
+    const std::size_t n = set.draws.size();
+    for (std::size_t e = 0; e < kEventCount; ++e) {
+        if (kEventUnits[e] != unit) continue;
+        const bool differs = std::any_of(set.draws.begin(), set.draws.end(),
+                                         [&](const CostModel* m) { return m->cycles[e] != set.base->cycles[e]; });
+        (differs ? changed : fixed).push_back(static_cast<std::uint8_t>(e));
+        if (!differs) continue;
+        for (std::size_t d = 0; d < n; ++d) cost.push_back(set.draws[d]->cycles[e]);
+    }
+}
+
+}  // namespace
+
+WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.size()) {
+    split_unit(EventUnit::Shader, set, shader_.fixed, shader_.changed, shader_.cost);
+    split_unit(EventUnit::RtUnit, set, rt_.fixed, rt_.changed, rt_.cost);
+    for (const CostModel* m : set.draws) {
+        double h = 0.0;
+        for (std::size_t e = 0; e < kEventCount; ++e)
+            if (kEventUnits[e] == EventUnit::HandOff) h += m->cycles[e];
+        handoff_.push_back(h);
+        for (std::size_t k = 0; k < kProgramEventCount; ++k)
+            programs_change_ = programs_change_ || m->cycles[kProgramEvents[k]] != set.base->cycles[kProgramEvents[k]];
+    }
+    for (std::vector<double>* v : {&shader_max_, &rt_max_, &rt_sum_, &lane_}) v->assign(n_, 0.0);
+}
+
+void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum) {
+    const CostModel& base = *set_->base;
+    const std::size_t n = n_, k_count = u.changed.size(), stride = k_count + 1;
+    cand_.clear();
+    counts_.assign(stride, 0.0);  // the wave's sums: fixed, then each changed event
+    double row[kEventCount + 1];  // one lane: fixed sum, then its changed counts
+    for (const LaneWork& l : wave.lanes) {
+        row[0] = 0.0;
+        for (const std::uint8_t e : u.fixed) row[0] += static_cast<double>(l.counts.n[e]) * base.cycles[e];
+        for (std::size_t k = 0; k < k_count; ++k) row[k + 1] = static_cast<double>(l.counts.n[u.changed[k]]);
+        for (std::size_t k = 0; k < stride; ++k) counts_[k] += row[k];
+        const auto covers = [&](const double* a, const double* b) {  // a >= b everywhere
+            for (std::size_t k = 0; k < stride; ++k)
+                if (a[k] < b[k]) return false;
+            return true;
+        };
+        bool dominated = false;
+        for (std::size_t c = 0; c < cand_.size() && !dominated; c += stride) dominated = covers(&cand_[c], row);
+        if (dominated) continue;
+        for (std::size_t c = 0; c < cand_.size();)  // drop the candidates this lane covers
+            if (covers(row, &cand_[c])) cand_.erase(cand_.begin() + static_cast<std::ptrdiff_t>(c),
+                                                     cand_.begin() + static_cast<std::ptrdiff_t>(c + stride));
+            else c += stride;
+        cand_.insert(cand_.end(), row, row + stride);
+    }
+    if (sum) {  // over all lanes: linear in the summed counts
+        for (std::size_t d = 0; d < n; ++d) sum[d] = counts_[0];
+        for (std::size_t k = 0; k < k_count; ++k) {
+            const double* cost = u.cost.data() + k * n;
+            for (std::size_t d = 0; d < n; ++d) sum[d] += counts_[k + 1] * cost[d];
+        }
+    }
+    for (std::size_t c = 0; c < cand_.size(); c += stride) {
+        const double* lane_c = &cand_[c];
+        double* const w = lane_.data();  // this lane under every draw
+        for (std::size_t d = 0; d < n; ++d) w[d] = lane_c[0];
+        for (std::size_t k = 0; k < k_count; ++k) {
+            const double* cost = u.cost.data() + k * n;
+            for (std::size_t d = 0; d < n; ++d) w[d] += lane_c[k + 1] * cost[d];
+        }
+        for (std::size_t d = 0; d < n; ++d) max[d] = std::max(max[d], w[d]);
+    }
+}
+
+void WaveDrawPricer::prepare_profiles(const CallProfiles& table) {
+    for (std::size_t id = profile_price_.size() / std::max<std::size_t>(n_, 1); id < table.size(); ++id)
+        for (std::size_t d = 0; d < n_; ++d)
+            profile_price_.push_back(program_price(table[static_cast<CallProfiles::Id>(id)], *set_->draws[d]));
+}
+
+void WaveDrawPricer::add(const WaveWork& wave, WarpTotals* totals) {
+    if (wave.lanes.empty() || n_ == 0) return;
+    const CostModel& base = *set_->base;
+    const std::size_t n = n_;
+    std::fill(shader_max_.begin(), shader_max_.end(), 0.0);  // price_wave: max(0, lanes)
+    std::fill(rt_max_.begin(), rt_max_.end(), -1.0);
+    unit_prices(wave, shader_, shader_max_.data(), nullptr);
+    unit_prices(wave, rt_, rt_max_.data(), rt_sum_.data());
+    std::uint32_t max_calls = 0, active_lane_rounds = 0;
+    for (const LaneWork& l : wave.lanes) {
+        max_calls = std::max(max_calls, l.calls);
+        active_lane_rounds += l.calls;
+    }
+    // Program rounds: the most expensive active call of each round.
+    double programs = 0.0;
+    worst_.assign(programs_change_ ? static_cast<std::size_t>(max_calls) * n : max_calls, -1.0);
+    if (!programs_change_) {
+        const double* price = base_prices_.all(*wave.profiles, base);
+        for (const LaneWork& l : wave.lanes)
+            for (std::uint32_t r = 0; r < l.calls; ++r)
+                worst_[r] = std::max(worst_[r], price[wave.calls[l.first_call + r]]);
+        for (double w : worst_) programs += w;
+    } else {
+        prepare_profiles(*wave.profiles);
+        for (const LaneWork& l : wave.lanes)
+            for (std::uint32_t r = 0; r < l.calls; ++r) {
+                const double* price = profile_price_.data() + static_cast<std::size_t>(wave.calls[l.first_call + r]) * n;
+                double* w = worst_.data() + static_cast<std::size_t>(r) * n;
+                for (std::size_t d = 0; d < n; ++d) w[d] = std::max(w[d], price[d]);
+            }
+    }
+    const double parallel = std::max(1.0, base.execution.rt_parallel_lanes);
+    for (std::size_t d = 0; d < n; ++d) {
+        WavePrice p;
+        p.shader = shader_max_[d];
+        p.rt = std::max(rt_max_[d], rt_sum_[d] / parallel);
+        p.rt_lane_sum = rt_sum_[d];
+        p.rounds = max_calls;
+        p.active_lane_rounds = active_lane_rounds;
+        p.handoff = static_cast<double>(max_calls) * handoff_[d];
+        p.programs = programs;
+        if (programs_change_)
+            for (std::uint32_t r = 0; r < max_calls; ++r) p.programs += worst_[static_cast<std::size_t>(r) * n + d];
+        totals[d].add(p, wave.lanes.size());
+    }
+}
+
+}  // namespace rtc
