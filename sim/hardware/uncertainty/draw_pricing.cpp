@@ -1,6 +1,7 @@
 #include "sim/hardware/uncertainty/draw_pricing.h"
 
 #include <algorithm>
+#include <array>
 
 namespace rtc {
 
@@ -93,42 +94,50 @@ void WaveDrawPricer::add(const WaveWork& wave, WarpTotals* totals) {
     std::fill(rt_max_.begin(), rt_max_.end(), -1.0);
     unit_prices(wave, shader_, shader_max_.data(), nullptr);
     unit_prices(wave, rt_, rt_max_.data(), rt_sum_.data());
-    std::uint32_t max_calls = 0, active_lane_rounds = 0;
-    for (const LaneWork& l : wave.lanes) {
-        max_calls = std::max(max_calls, l.calls);
-        active_lane_rounds += l.calls;
-    }
+    std::uint32_t max_calls = 0;
+    for (const LaneWork& l : wave.lanes) max_calls = std::max(max_calls, l.calls);
     // Program rounds: the most expensive active call of each round.
     double programs = 0.0;
-    worst_.assign(programs_change_ ? static_cast<std::size_t>(max_calls) * n : max_calls, -1.0);
     if (!programs_change_) {
+        worst_.assign(max_calls, -1.0);
         const double* price = base_prices_.all(*wave.profiles, base);
         for (const LaneWork& l : wave.lanes)
             for (std::uint32_t r = 0; r < l.calls; ++r)
                 worst_[r] = std::max(worst_[r], price[wave.calls[l.first_call + r]]);
         for (double w : worst_) programs += w;
     } else {
+        // Per draw; a round's lanes mostly call a few distinct profiles (a
+        // capsule miss, a hit), so the max over draws is taken per distinct one.
         prepare_profiles(*wave.profiles);
-        for (const LaneWork& l : wave.lanes)
-            for (std::uint32_t r = 0; r < l.calls; ++r) {
-                const double* price = profile_price_.data() + static_cast<std::size_t>(wave.calls[l.first_call + r]) * n;
-                double* w = worst_.data() + static_cast<std::size_t>(r) * n;
-                for (std::size_t d = 0; d < n; ++d) w[d] = std::max(w[d], price[d]);
+        worst_.assign(n, 0.0);
+        std::array<CallProfiles::Id, 64> ids{};  // warp_width <= 64 lanes
+        for (std::uint32_t r = 0; r < max_calls; ++r) {
+            std::size_t distinct = 0;
+            for (const LaneWork& l : wave.lanes) {
+                if (l.calls <= r) continue;
+                const CallProfiles::Id id = wave.calls[l.first_call + r];
+                if (std::find(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(distinct), id) ==
+                    ids.begin() + static_cast<std::ptrdiff_t>(distinct) && distinct < ids.size())
+                    ids[distinct++] = id;
             }
+            double* const round = lane_.data();
+            std::fill(round, round + n, -1.0);
+            for (std::size_t i = 0; i < distinct; ++i) {
+                const double* price = profile_price_.data() + static_cast<std::size_t>(ids[i]) * n;
+                for (std::size_t d = 0; d < n; ++d) round[d] = std::max(round[d], price[d]);
+            }
+            for (std::size_t d = 0; d < n; ++d) worst_[d] += round[d];
+        }
     }
+    // Only the cycles: a draw's waves, lanes and rounds are its preset's.
     const double parallel = std::max(1.0, base.execution.rt_parallel_lanes);
     for (std::size_t d = 0; d < n; ++d) {
-        WavePrice p;
-        p.shader = shader_max_[d];
-        p.rt = std::max(rt_max_[d], rt_sum_[d] / parallel);
-        p.rt_lane_sum = rt_sum_[d];
-        p.rounds = max_calls;
-        p.active_lane_rounds = active_lane_rounds;
-        p.handoff = static_cast<double>(max_calls) * handoff_[d];
-        p.programs = programs;
-        if (programs_change_)
-            for (std::uint32_t r = 0; r < max_calls; ++r) p.programs += worst_[static_cast<std::size_t>(r) * n + d];
-        totals[d].add(p, wave.lanes.size());
+        WarpTotals& t = totals[d];
+        t.shader += shader_max_[d];
+        t.rt += std::max(rt_max_[d], rt_sum_[d] / parallel);
+        t.rt_lane_sum += rt_sum_[d];
+        t.handoff += static_cast<double>(max_calls) * handoff_[d];
+        t.programs += programs_change_ ? worst_[d] : programs;
     }
 }
 

@@ -6,7 +6,9 @@
 // never be the slowest under any draw (costs are >= 0), so only the few
 // undominated lanes are priced per draw, and the lanes' sum comes from the
 // summed counts. Program rounds are priced once when no draw changes a
-// program cost. Same formulas as price_wave (execution_model.h); only the
+// program cost, else per distinct call profile of each round. (Pruning lanes
+// by bounds over the draws instead of dominance priced more lanes: the
+// draws' spread is wider than the lanes'.) Same formulas as price_wave (execution_model.h); only the
 // summation order differs (unchanged events first).
 #pragma once
 
