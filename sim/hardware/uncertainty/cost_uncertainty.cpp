@@ -162,7 +162,9 @@ nlohmann::ordered_json cost_uncertainty_to_json(const CostUncertainty& u) {
         j["parameters"].push_back(q);
     }
     j["covariance"] = u.covariance;
-    j["fitted_on"] = u.fitted_on;
+    // The preset's top-level fitted_on describes the workload; this one is
+    // written only when a caller filled it.
+    if (!u.fitted_on.empty()) j["fitted_on"] = u.fitted_on;
     return j;
 }
 
