@@ -65,6 +65,17 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
         // previous output), else from the run's primary cost preset.
         const CostModel start = desc.start.empty() ? runs.front()->costs.front()
                                                    : load_cost_model(resolve_preset(desc.start, file, "/calibrate/start"));
+        // A cost the start preset does not price (a program by name in a
+        // preset that prices operation classes, or the reverse) would be
+        // fitted and then dropped from the written preset: refuse it.
+        for (std::size_t i = 0; i < desc.parameters.size(); ++i)
+            for (std::size_t k = 0; k < desc.parameters[i].events.size(); ++k)
+                if (const Event e = desc.parameters[i].events[k]; !start.prices(e))
+                    throw InputError(file + ": /calibrate/parameters/" + std::to_string(i) + "/events/" +
+                                     std::to_string(k) + ": the start preset " + start.name + " does not price " +
+                                     std::string(event_name(e)) +
+                                     (is_operation_event(e) ? " (it prices programs by name)"
+                                                            : " (it prices programs by operation class, op_*)"));
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
         // What it was fitted on, so runs at another resolution are told.
         const WorkloadDesc& w = runs.front()->config.workload;
