@@ -188,12 +188,8 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
     if (!cli.quiet) {
         std::vector<std::string> notes;  // each preset's once (report.json: resolution_notes)
         for (const RunResult& r : runs)
-            for (const CostModel& c : r.costs) {
-                if (r.config.workload.type == WorkloadType::Rays) continue;
-                std::string n = resolution_note(c, static_cast<std::uint64_t>(r.camera.width) *
-                                                       static_cast<std::uint64_t>(r.camera.height));
-                if (!n.empty() && std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(std::move(n));
-            }
+            for (auto& [preset, n] : resolution_notes(r))
+                if (std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(std::move(n));
         for (const std::string& n : notes) std::cerr << "note: " << n << "\n";
         std::cerr << "outputs in " << out << "/\n";
     }

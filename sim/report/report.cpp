@@ -135,6 +135,15 @@ std::string format_speedup_interval(double s, const std::optional<std::array<dou
 
 }  // namespace
 
+std::vector<std::pair<std::string, std::string>> resolution_notes(const RunResult& run) {
+    std::vector<std::pair<std::string, std::string>> notes;
+    if (run.config.workload.type == WorkloadType::Rays) return notes;
+    const auto pixels = static_cast<std::uint64_t>(run.camera.width) * static_cast<std::uint64_t>(run.camera.height);
+    for (const CostModel& c : run.costs)
+        if (std::string note = resolution_note(c, pixels); !note.empty()) notes.emplace_back(c.name, std::move(note));
+    return notes;
+}
+
 nlohmann::ordered_json report_json(const RunResult& run) {
     nlohmann::ordered_json j;
     j["rtcsim_version"] = kVersion;
@@ -165,12 +174,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["cost_presets"] = nlohmann::ordered_json::array();
     for (const CostModel& c : run.costs) j["cost_presets"].push_back(c.name);
     nlohmann::ordered_json resolution = nlohmann::ordered_json::object();
-    if (run.config.workload.type != WorkloadType::Rays)
-        for (const CostModel& c : run.costs) {
-            const std::string note =
-                resolution_note(c, static_cast<std::uint64_t>(run.camera.width) * static_cast<std::uint64_t>(run.camera.height));
-            if (!note.empty()) resolution[c.name] = note;
-        }
+    for (const auto& [preset, note] : resolution_notes(run)) resolution[preset] = note;
     if (!resolution.empty()) j["resolution_notes"] = resolution;
     j["memory_preset"] = run.memory.name;
     nlohmann::ordered_json methods;

@@ -9,11 +9,18 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rtc {
 
 [[nodiscard]] nlohmann::ordered_json report_json(const RunResult& run);
+
+// Per cost preset of a camera run, the note when the run's pixel count is
+// more than 4x off the one the preset was fitted on (resolution_note):
+// {preset name, note}, only presets with a note. report.json's
+// resolution_notes and simulate's stderr notes.
+[[nodiscard]] std::vector<std::pair<std::string, std::string>> resolution_notes(const RunResult& run);
 
 // Summary table over runs (one row each): the columns shared by the CSV, the
 // Markdown file and the terminal table.
