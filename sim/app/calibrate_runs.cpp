@@ -72,10 +72,7 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
             for (std::size_t k = 0; k < desc.parameters[i].events.size(); ++k)
                 if (const Event e = desc.parameters[i].events[k]; !start.prices(e))
                     throw InputError(file + ": /calibrate/parameters/" + std::to_string(i) + "/events/" +
-                                     std::to_string(k) + ": the start preset " + start.name + " does not price " +
-                                     std::string(event_name(e)) +
-                                     (is_operation_event(e) ? " (it prices programs by name)"
-                                                            : " (it prices programs by operation class, op_*)"));
+                                     std::to_string(k) + ": the start " + start.unpriced(e));
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
         // What it was fitted on, so runs at another resolution are told.
         const WorkloadDesc& w = runs.front()->config.workload;

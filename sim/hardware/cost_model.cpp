@@ -20,6 +20,11 @@ bool CostModel::prices(Event e) const {
     return true;
 }
 
+std::string CostModel::unpriced(Event e) const {
+    return "preset \"" + name + "\" does not price " + std::string(event_name(e)) +
+           (is_operation_event(e) ? " (it prices programs by name)" : " (it prices programs by operation class, op_*)");
+}
+
 std::string CostModel::missing_feature(const std::vector<std::string>& needs) const {
     for (const std::string& n : needs)
         if (!has_feature(n)) return n;

@@ -46,6 +46,9 @@ struct CostModel {
 
     // Whether the preset prices event `e` (false: the other program group's).
     [[nodiscard]] bool prices(Event e) const;
+    // Why it does not price `e` ("preset P does not price E (it prices
+    // programs by ...)"), for the errors of whatever would set its cost.
+    [[nodiscard]] std::string unpriced(Event e) const;
     std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
 
     [[nodiscard]] bool has_feature(std::string_view f) const;

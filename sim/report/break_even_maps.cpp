@@ -39,10 +39,7 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
         for (const BreakEvenAxis* axis : {&spec.x, &spec.y})
             for (const Event e : axis->events)
                 if (!base->prices(e))
-                    throw InputError(run.config.file + ": /break_even: map \"" + spec.name + "\": preset \"" +
-                                     spec.preset + "\" does not price " + std::string(event_name(e)) +
-                                     (is_operation_event(e) ? " (it prices programs by name)"
-                                                            : " (it prices programs by operation class, op_*)"));
+                    throw InputError(run.config.file + ": /break_even: map \"" + spec.name + "\": " + base->unpriced(e));
         BreakEvenGrid g;
         g.nx = g.ny = spec.cells;
         g.x_lo = spec.x.min, g.x_hi = spec.x.max, g.y_lo = spec.y.min, g.y_hi = spec.y.max;
