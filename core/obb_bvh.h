@@ -93,7 +93,7 @@ struct ObbBvh {
 // the frame of its primitives' mean direction and its box in that frame.
 // One primitive per leaf, as for custom primitives on the hardware. The
 // costs are in units of one aligned box test; defaults are estimates for an
-// RT unit (turing-guess: a hand-over plus a program is ~350 cycles, a box test
+// RT unit (turing-per-ray-guess: a hand-over plus a program is ~350 cycles, a box test
 // 4, a node fetch 8), not Embree's CPU constants (1, 5, 6).
 struct ObbBuildOptions {
     int width = 4;

@@ -4,7 +4,7 @@
     result = rtcsim.run("configs/runs/quickstart.json", threads=2)
     print(result.speedup("obb"))                       # cycles(ref) / cycles(obb)
     counts = result["obb"].pixel_counts                # (H, W, events) uint32, no copy
-    rtcsim.price(result["obb"], "turing-guess")        # re-priced without tracing
+    rtcsim.price(result["obb"], "turing-per-ray-guess")        # re-priced without tracing
 
 Configs, presets and errors are the `simulate` CLI's (rtcsim.InputError
 carries its one-line "<file>: <JSON path>: <problem>" message). Figures:

@@ -117,7 +117,7 @@ def simulate(*args):
 
 def load_cost_model(preset):
     """A cost preset: a CostModel (returned as is), a preset file, or a
-    preset name from configs/hw ("turing-guess", "turing-calibrated", ...)."""
+    preset name from configs/hw ("turing-per-ray-guess", "turing-calibrated", ...)."""
     if isinstance(preset, _rtcsim.CostModel):
         return preset
     path = os.fspath(preset)

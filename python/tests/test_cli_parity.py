@@ -32,7 +32,7 @@ def test_report_identical_to_cli(simulate, tiny, tmp_path):
     # The terminal table too.
     assert rtcsim.summary_table(tiny) in cli.stdout
     # And the speedup printed from Python is the CLI's.
-    assert tiny.speedup("obb") == expected["speedup_over_ref"]["obb"]["turing-guess"]
+    assert tiny.speedup("obb") == expected["speedup_over_ref"]["obb"]["turing-per-ray-guess"]
 
 
 def test_sweep_identical_to_cli(simulate, tmp_path):

@@ -62,7 +62,7 @@ def test_dict_config_names_the_key():
         config = json.load(f)
     config["workload"]["spp"] = -4
     # Its preset paths are relative to tests/configs: without `base`, name them.
-    unanchored = dict(config, cost=["turing-guess"], memory="memory-optix7")
+    unanchored = dict(config, cost=["turing-per-ray-guess"], memory="memory-optix7")
     with pytest.raises(rtcsim.InputError, match=r"^<dict>: /workload/spp: expected a positive integer, got -4$"):
         rtcsim.run(unanchored, progress=False)
     # `base` names the config in messages and anchors its relative paths.
@@ -80,8 +80,8 @@ def test_bad_preset_and_price_inputs():
     with pytest.raises(rtcsim.InputError, match="no-such-preset"):
         rtcsim.load_cost_model("no-such-preset")
     with pytest.raises(ValueError, match="events"):
-        rtcsim.price([1, 2, 3], "turing-guess")
+        rtcsim.price([1, 2, 3], "turing-per-ray-guess")
     with pytest.raises(KeyError, match="unknown event"):
-        rtcsim.price({"teleport": 1}, "turing-guess")
+        rtcsim.price({"teleport": 1}, "turing-per-ray-guess")
     with pytest.raises(ValueError, match="threads"):
         rtcsim.run(TINY, threads=-1, progress=False)

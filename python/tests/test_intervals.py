@@ -12,7 +12,7 @@ from rtcsim import plot
 
 
 def preset_with_covariance(tmp_path):
-    with open(os.path.join(ROOT, "configs/hw/turing-guess.json")) as f:
+    with open(os.path.join(ROOT, "configs/hw/turing-per-ray-guess.json")) as f:
         j = json.load(f)
     j["name"] = "guess-with-covariance"
     j["uncertainty"] = {
@@ -31,7 +31,7 @@ def preset_with_covariance(tmp_path):
 def test_intervals_through_the_cli(simulate, tmp_path):
     preset = preset_with_covariance(tmp_path)
     out = tmp_path / "out"
-    sets = {"cost": [preset, "turing-guess"], "uncertainty": {"draws": 16, "seed": 2},
+    sets = {"cost": [preset, "turing-per-ray-guess"], "uncertainty": {"draws": 16, "seed": 2},
             "workload.width": 16, "workload.height": 16, "output.images": False, "output.arrays": False,
             "sweep": {"scene.tilt_deg": [0, 45]}}
     args = [a for k, v in sets.items() for a in ("--set", f"{k}={json.dumps(v)}")]
@@ -43,15 +43,15 @@ def test_intervals_through_the_cli(simulate, tmp_path):
         s = r.speedup("obb")
         low, high = r.speedup_interval("obb")
         assert low <= s <= high and low < high
-        assert r.speedup_interval("obb", preset="turing-guess") is None
-        assert "no covariance" in r.uncertainty_note("turing-guess")
+        assert r.speedup_interval("obb", preset="turing-per-ray-guess") is None
+        assert "no covariance" in r.uncertainty_note("turing-per-ray-guess")
         assert "16 draws" in r.uncertainty_note(0)
     rows = list(csv.DictReader(open(out / "results.csv")))
     obb = [row for row in rows if row["method"] == "obb"]
     with_interval = [row for row in obb if row["cost_preset"] == "guess-with-covariance"]
     assert all(float(row["speedup_low"]) <= float(row["speedup"]) <= float(row["speedup_high"])
                for row in with_interval)
-    assert all(row["speedup_low"] == "" for row in obb if row["cost_preset"] == "turing-guess")
+    assert all(row["speedup_low"] == "" for row in obb if row["cost_preset"] == "turing-per-ray-guess")
     assert " [" in (out / "summary.md").read_text()
     assert "fill-opacity" in (out / "speedup_vs_scene.tilt_deg.svg").read_text()  # the band
     fig = plot.speedup_vs_axis(reports, "scene.tilt_deg")

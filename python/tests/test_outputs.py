@@ -9,7 +9,7 @@ import pytest
 
 SWEEP = ('sweep={"scene":[{"count":1,"radius":0.1},{"count":20,"radius":0.01}],'
          '"scene.tilt_deg":[0,45]}')
-PRESETS = 'cost=["../../configs/hw/turing-calibrated.json","../../configs/hw/turing-guess.json"]'
+PRESETS = 'cost=["../../configs/hw/turing-calibrated.json","../../configs/hw/turing-per-ray-guess.json"]'
 
 
 @pytest.fixture(scope="module")
@@ -30,7 +30,7 @@ def test_results_csv_loads_as_numbers(sweep_out):
                   "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent"):
         assert np.issubdtype(data[field].dtype, np.number), field
     assert sorted(set(data["scenecount"])) == [1, 20]
-    assert set(data["cost_preset"]) == {"turing-calibrated", "turing-guess"}
+    assert set(data["cost_preset"]) == {"turing-calibrated", "turing-per-ray-guess"}
     assert set(data["execution"]) == {"warp", "per_ray"}
     assert np.allclose(data["cycles_per_ray"], data["cycles"] / data["rays"])
     assert np.all(data["speedup"][data["method"] == "ref"] == 1.0)

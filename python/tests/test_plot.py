@@ -59,7 +59,7 @@ def test_break_even_matches_pricing(tiny, tmp_path):
     rgb = fig.axes[0].images[0].get_array()
     assert rgb.shape == (8, 8, 3)
     # Corners: cheap switches favour ref, dear ones obb (the masquerade avoids them).
-    model = rtcsim.load_cost_model("turing-guess").copy()
+    model = rtcsim.load_cost_model("turing-per-ray-guess").copy()
     for (iy, ix) in ((0, 0), (7, 7), (0, 7), (7, 0)):
         c = model.cycles
         c[rtcsim.EVENT_INDEX["context_switch"]] = 10 * 100 ** ((ix + 0.5) / 8)
@@ -74,7 +74,7 @@ def test_break_even_matches_pricing(tiny, tmp_path):
         close = max(cycles.values()) / min(cycles.values()) < 1.1
         assert np.allclose(rgb[iy, ix], 0.55 * want + 0.45 if close else want)
     saved(fig, tmp_path / "break_even.png")
-    config = dict(tiny.config, break_even=[{"name": "a", "preset": "turing-guess", "cells": 4,
+    config = dict(tiny.config, break_even=[{"name": "a", "preset": "turing-per-ray-guess", "cells": 4,
                                             "x": {"events": ["context_switch"], "min": 10, "max": 1000},
                                             "y": {"events": ["ray"], "min": 10, "max": 1000}}])
     tiny.data["config"], saved_config = config, tiny.data["config"]

@@ -18,7 +18,7 @@ def run_with(presets, record_warps=False):
 
 
 def warp_preset(path, lanes, context_switch):
-    with open(f"{rtcsim.PRESET_DIR}/turing-guess.json") as f:
+    with open(f"{rtcsim.PRESET_DIR}/turing-per-ray-guess.json") as f:
         j = json.load(f)
     j["name"] = path.stem
     j["execution"] = {"model": {"value": "warp", "source": "test"},
@@ -32,7 +32,7 @@ def warp_preset(path, lanes, context_switch):
 
 def test_reprice_equals_rerun_per_ray():
     other = "turing-per-ray-calibrated"
-    guess = run_with([f"{rtcsim.PRESET_DIR}/turing-guess.json"])
+    guess = run_with([f"{rtcsim.PRESET_DIR}/turing-per-ray-guess.json"])
     calibrated = run_with([f"{rtcsim.PRESET_DIR}/{other}.json"])
     for name in ("ref", "obb"):
         again = rtcsim.price(guess[name], other)
@@ -49,8 +49,8 @@ def test_reprice_equals_rerun_per_ray():
 
 
 def test_edited_costs_equal_a_preset_file(tmp_path):
-    base = run_with([f"{rtcsim.PRESET_DIR}/turing-guess.json"])
-    model = rtcsim.load_cost_model("turing-guess")
+    base = run_with([f"{rtcsim.PRESET_DIR}/turing-per-ray-guess.json"])
+    model = rtcsim.load_cost_model("turing-per-ray-guess")
     cycles = model.cycles
     cycles[rtcsim.EVENT_INDEX["context_switch"]] = 777.0
     model.cycles = cycles
@@ -87,7 +87,7 @@ def test_reprice_equals_rerun_warp(tmp_path):
 
 def test_warp_pricing_needs_the_waves(tmp_path):
     a = warp_preset(tmp_path / "warp-a.json", lanes=32, context_switch=200)
-    per_ray = run_with([f"{rtcsim.PRESET_DIR}/turing-guess.json"])
+    per_ray = run_with([f"{rtcsim.PRESET_DIR}/turing-per-ray-guess.json"])
     with pytest.raises(ValueError, match="record_warps"):
         rtcsim.price(per_ray["obb"], a)
     with pytest.raises(ValueError, match="warp preset"):
@@ -103,8 +103,8 @@ def test_warp_pricing_needs_the_waves(tmp_path):
 
 
 def test_cost_model_round_trip():
-    m = rtcsim.load_cost_model("turing-guess")
-    assert m.name == "turing-guess" and not m.is_warp
+    m = rtcsim.load_cost_model("turing-per-ray-guess")
+    assert m.name == "turing-per-ray-guess" and not m.is_warp
     assert m.execution["model"] == "per_ray"
     assert len(m.cycles) == len(m.sources) == len(rtcsim.EVENT_NAMES)
     again = rtcsim.CostModel.from_json(m.to_json())

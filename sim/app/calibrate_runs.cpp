@@ -73,6 +73,10 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
                 if (const Event e = desc.parameters[i].events[k]; !start.prices(e))
                     throw InputError(file + ": /calibrate/parameters/" + std::to_string(i) + "/events/" +
                                      std::to_string(k) + ": the start " + start.unpriced(e));
+                else if (start.composition(e))
+                    throw InputError(file + ": /calibrate/parameters/" + std::to_string(i) + "/events/" +
+                                     std::to_string(k) + ": " + std::string(event_name(e)) + " is a sum of other costs in \"" +
+                                     start.name + "\" (sum_of): fit its terms instead");
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
         // What it was fitted on, so runs at another resolution are told.
         const WorkloadDesc& w = runs.front()->config.workload;

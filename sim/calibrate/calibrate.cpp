@@ -83,6 +83,7 @@ template <class Counts>
     CostModel m = fit.start;
     for (std::size_t k = 0; k < fit.params.size(); ++k)
         for (Event e : fit.params[k].events) m[e] = theta[k] * multiplier(fit.params[k], e, fit.start);
+    m.settle();
     return m;
 }
 
@@ -310,6 +311,7 @@ CalibrationResult calibrate(const std::vector<CalibrationRun>& runs, const CostM
             res.model.source[static_cast<std::size_t>(e)] =
                 "fitted by rtcsim calibrate to " + options.target_name + ", was " + fmt(old);
         }
+    res.model.settle();  // costs made of fitted ones (sum_of) follow them
 
     // Per-run fit and RMS log errors.
     double sum_w = 0.0, ssr0 = 0.0, ssr = 0.0;

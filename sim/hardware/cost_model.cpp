@@ -1,8 +1,11 @@
 #include "sim/hardware/cost_model.h"
 
+#include "sim/hardware/presets/derived_preset.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 
@@ -12,6 +15,52 @@ bool CostModel::has_feature(std::string_view f) const {
     for (const std::string& x : features)
         if (x == f) return true;
     return false;
+}
+
+bool order_compositions(std::vector<ComposedCost>& composed) {
+    // Kahn's order: a sum after the sums among its terms; a cycle is left over.
+    std::vector<ComposedCost> done;
+    while (!composed.empty()) {
+        const auto ready = std::find_if(composed.begin(), composed.end(), [&](const ComposedCost& c) {
+            return std::none_of(c.terms.begin(), c.terms.end(), [&](const auto& t) {
+                return std::any_of(composed.begin(), composed.end(), [&](const ComposedCost& o) { return o.target == t.first; });
+            });
+        });
+        if (ready == composed.end()) return false;
+        done.push_back(std::move(*ready));
+        composed.erase(ready);
+    }
+    composed = std::move(done);
+    return true;
+}
+
+void CostModel::settle() {
+    for (const ComposedCost& c : composed) {
+        double v = 0.0;
+        for (const auto& [e, w] : c.terms) v += w * (*this)[e];
+        (*this)[c.target] = v;
+    }
+}
+
+const ComposedCost* CostModel::composition(Event e) const {
+    for (const ComposedCost& c : composed)
+        if (c.target == e) return &c;
+    return nullptr;
+}
+
+std::string CostModel::hypothetical_reason(std::string_view method) const {
+    for (const auto& [m, why] : hypothetical)
+        if (m == method) return why;
+    return {};
+}
+
+void parse_hypothetical(const JsonReader& r, CostModel& m) {
+    for (const auto& [method, why] : r.json().items()) {
+        if (!why.is_string() || why.get<std::string>().empty())
+            r.fail(method, "expected why this method is hypothetical on this machine, with its source");
+        std::erase_if(m.hypothetical, [&](const auto& h) { return h.first == method; });
+        m.hypothetical.emplace_back(method, why.get<std::string>());
+    }
 }
 
 bool CostModel::prices(Event e) const {
@@ -61,10 +110,24 @@ double price_cycles(const RayCounts& counts, const CostModel& model) {
     return total;
 }
 
+ComposedCost parse_sum_of(const JsonReader& r, Event target, const CostModel& m) {
+    ComposedCost c{target, {}};
+    if (r.json().empty()) r.fail("", "expected at least one {\"<event>\": weight} term");
+    for (const auto& [key, value] : r.json().items()) {
+        const auto e = event_from_name(key);
+        if (!e) r.fail(key, "unknown event (see core/events.h)");
+        if (*e == target) r.fail(key, "a cost cannot be a sum of itself");
+        if (!m.prices(*e)) r.fail(key, m.unpriced(*e));
+        c.terms.emplace_back(*e, r.number(key, std::nullopt, 0.0, 1e6));
+    }
+    return c;
+}
+
 CostModel parse_cost_model(const std::string& text, const std::string& file) {
     const nlohmann::json j = parse_json_text(text, file);
     const JsonReader r(j, file);
-    r.allow_only({"name", "description", "features", "execution", "fitted_on", "cycles", "uncertainty"});
+    if (j.is_object() && j.contains("derived_from")) return parse_derived_preset(r);
+    r.allow_only({"name", "description", "features", "hypothetical", "execution", "fitted_on", "cycles", "uncertainty"});
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
@@ -78,6 +141,7 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
             m.features.push_back(f[i].get<std::string>());
         }
     }
+    if (r.has("hypothetical")) parse_hypothetical(r.child("hypothetical"), m);
     if (r.has("execution")) m.execution = parse_execution_model(r.child("execution"));
     if (r.has("fitted_on")) {
         const JsonReader f = r.child("fitted_on");
@@ -111,9 +175,23 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
                                   ? "missing: a preset that prices operation classes needs every op_* cost"
                                   : "missing: every event needs a cost");
         const JsonReader e = cycles.child(name);
-        e.allow_only({"value", "source"});
-        m.cycles[i] = e.number("value", std::nullopt, 0.0, 1e9);
+        e.allow_only({"value", "source", "sum_of"});
         m.source[i] = e.string("source", std::nullopt);
+        if (e.has("sum_of")) {
+            m.composed.push_back(parse_sum_of(e.child("sum_of"), static_cast<Event>(i), m));
+        } else {
+            m.cycles[i] = e.number("value", std::nullopt, 0.0, 1e9);
+        }
+    }
+    if (!order_compositions(m.composed))
+        cycles.fail(std::string(event_name(m.composed.front().target)), "sums of costs refer to each other in a cycle");
+    m.settle();
+    for (const ComposedCost& c : m.composed) {  // a written value must be the sum (cost_model_to_json writes it)
+        const JsonReader e = cycles.child(kEventNames[static_cast<std::size_t>(c.target)]);
+        if (!e.has("value")) continue;
+        const double v = e.number("value", std::nullopt, 0.0, 1e9), sum = m[c.target];
+        if (std::abs(v - sum) > 1e-9 * std::max(1.0, sum))
+            e.fail("value", describe(v) + " is not the sum of its terms (" + describe(sum) + "): remove it, or fix the terms");
     }
     if (r.has("uncertainty")) m.uncertainty = parse_cost_uncertainty(r.child("uncertainty"), m.cycles);
     return m;
@@ -127,7 +205,14 @@ std::string cost_model_to_json(const CostModel& m) {
     nlohmann::ordered_json j;
     j["name"] = m.name;
     j["description"] = m.description;
+    // A derived preset is written flattened (standalone); its base is named.
+    if (!m.derived_from.empty()) j["description"] = m.description + " (derived from " + m.derived_from + ")";
     j["features"] = m.features;
+    if (!m.hypothetical.empty()) {
+        nlohmann::ordered_json h;
+        for (const auto& [method, why] : m.hypothetical) h[method] = why;
+        j["hypothetical"] = h;
+    }
     if (m.execution.warp() || !m.execution.sources.empty()) {
         nlohmann::ordered_json e;
         const auto source = [&](const std::string& key) {
@@ -139,15 +224,28 @@ std::string cost_model_to_json(const CostModel& m) {
         e["warp_width"] = {{"value", m.execution.warp_width}, {"source", source("warp_width")}};
         e["tile"] = {{"value", {m.execution.tile_width, m.execution.tile_height}}, {"source", source("tile")}};
         e["rt_parallel_lanes"] = {{"value", m.execution.rt_parallel_lanes}, {"source", source("rt_parallel_lanes")}};
+        if (!m.execution.lockstep_events.empty()) {
+            nlohmann::ordered_json names = nlohmann::ordered_json::array();
+            for (Event x : m.execution.lockstep_events) names.push_back(std::string(event_name(x)));
+            e["lockstep_events"] = {{"value", names}, {"source", source("lockstep_events")}};
+        }
         j["execution"] = e;
     }
     if (m.fitted_on.pixels() > 0)
         j["fitted_on"] = {{"width", m.fitted_on.width}, {"height", m.fitted_on.height}, {"spp", m.fitted_on.spp},
                           {"bounces", m.fitted_on.bounces}, {"config", m.fitted_on.config}};
     nlohmann::ordered_json cycles;
-    for (std::size_t i = 0; i < kEventCount; ++i)
-        if (m.prices(static_cast<Event>(i)))
-            cycles[std::string(kEventNames[i])] = {{"value", m.cycles[i]}, {"source", m.source[i]}};
+    for (std::size_t i = 0; i < kEventCount; ++i) {
+        if (!m.prices(static_cast<Event>(i))) continue;
+        nlohmann::ordered_json entry = {{"value", m.cycles[i]}};
+        if (const ComposedCost* c = m.composition(static_cast<Event>(i))) {
+            nlohmann::ordered_json terms;
+            for (const auto& [e, w] : c->terms) terms[std::string(event_name(e))] = w;
+            entry["sum_of"] = terms;
+        }
+        entry["source"] = m.source[i];
+        cycles[std::string(kEventNames[i])] = entry;
+    }
     j["cycles"] = cycles;
     if (m.uncertainty) j["uncertainty"] = cost_uncertainty_to_json(*m.uncertainty);
     return j.dump(2) + "\n";

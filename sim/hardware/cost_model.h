@@ -10,16 +10,29 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace rtc {
 
+class JsonReader;
+
 // Which group of program events a preset prices (core/events.h): the
 // operation classes a call executed, or the programs by name (the first
 // version's guesses). The other group is counted but costs 0 under it.
 enum class ProgramPricing : std::uint8_t { ByName, ByOperation };
+
+// A cost defined as a weighted sum of other events' costs (a preset entry's
+// "sum_of"): the same arithmetic gets the same price in every method, e.g. an
+// oriented-box test is a ray transform plus a slab test, which is exactly
+// what the masquerade pays for its instance transform and unit-box test
+// (docs/beyond.md, "The same price for the same arithmetic").
+struct ComposedCost {
+    Event target{};
+    std::vector<std::pair<Event, double>> terms;  // event, weight (>= 0)
+};
 
 struct CostModel {
     std::string name;
@@ -50,6 +63,19 @@ struct CostModel {
     // programs by ...)"), for the errors of whatever would set its cost.
     [[nodiscard]] std::string unpriced(Event e) const;
     std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
+    std::vector<ComposedCost> composed;          // costs made of other costs, in order
+    std::string derived_from;                    // the base preset's name (a derived preset), else empty
+    // Methods this machine could run by its features but does not build as
+    // modelled (RDNA4 builds oriented boxes over triangles only): method ->
+    // why. Still priced; tables and report.json label them hypothetical.
+    std::vector<std::pair<std::string, std::string>> hypothetical;
+    [[nodiscard]] std::string hypothetical_reason(std::string_view method) const;
+
+    // Recomputes every composed cost from its terms (in the order
+    // order_compositions left them): after anything changes
+    // costs (a derived preset's deltas, a draw, a fit, a break-even axis).
+    void settle();
+    [[nodiscard]] const ComposedCost* composition(Event e) const;
 
     [[nodiscard]] bool has_feature(std::string_view f) const;
     // The first of `needs` this preset lacks, or empty.
@@ -76,12 +102,24 @@ struct PricedRun {
 [[nodiscard]] double price_cycles(const RayCounts& counts, const CostModel& model);
 
 // Reads a preset: {"name", "description", "cycles": {"<event>": {"value": x,
-// "source": "..."}}}. Every event must be priced (a missing one is an error,
+// "source": "..."}}}; an entry may instead be {"sum_of": {"<event>": weight,
+// ...}, "source"} (a ComposedCost; "value", if given, must equal the sum).
+// A preset with "derived_from" is another preset plus deltas
+// (sim/hardware/presets/derived_preset.h). Every event must be priced (a missing one is an error,
 // so no cost silently defaults to zero), except the program group the preset
 // does not use: a preset with op_* costs prices every operation class and no
 // program by name, one without prices every program by name. Costs must be
 // finite and >= 0. Errors name the file and JSON path.
 [[nodiscard]] CostModel load_cost_model(const std::string& path);
+// A "sum_of" block {"<event>": weight, ...} for the cost of `target`; every
+// term must be an event `m` prices. Errors name the file and JSON path.
+[[nodiscard]] ComposedCost parse_sum_of(const JsonReader& block, Event target, const CostModel& m);
+// Orders sums so that each comes after the sums among its terms (settle()
+// then computes them in one pass); false when they refer to each other in a cycle.
+[[nodiscard]] bool order_compositions(std::vector<ComposedCost>& composed);
+// A "hypothetical" block {"<method>": "why", ...} into m.hypothetical
+// (entries for a method already there are replaced).
+void parse_hypothetical(const JsonReader& block, CostModel& m);
 [[nodiscard]] CostModel parse_cost_model(const std::string& text, const std::string& file);
 [[nodiscard]] std::string cost_model_to_json(const CostModel& model);
 

@@ -2,16 +2,19 @@
 
 #include "sim/util/json_reader.h"
 
+#include <algorithm>
+
 namespace rtc {
 
 const char* execution_name(ExecutionKind k) { return k == ExecutionKind::Warp ? "warp" : "per_ray"; }
 
-ExecutionModel parse_execution_model(const JsonReader& r) {
-    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes"});
-    ExecutionModel m;
+ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& base) {
+    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events"});
+    ExecutionModel m = base;
     const auto entry = [&](std::string_view key) {
         const JsonReader e = r.child(key);
         e.allow_only({"value", "source"});
+        std::erase_if(m.sources, [&](const auto& s) { return s.first == key; });
         m.sources.emplace_back(std::string(key), e.string("source", std::nullopt));
         return e;
     };
@@ -35,9 +38,32 @@ ExecutionModel parse_execution_model(const JsonReader& r) {
     if (m.tile_width * m.tile_height != m.warp_width)
         r.fail("tile", "a tile of " + std::to_string(m.tile_width) + " x " + std::to_string(m.tile_height) +
                            " pixels does not fill a warp of " + std::to_string(m.warp_width) + " lanes");
-    m.rt_parallel_lanes = m.warp_width;
+    // Unset: every lane overlaps (the slowest lane bounds), unless a base
+    // preset set it for the same warp width.
+    const bool inherits_lanes = !base.sources.empty() && !r.has("warp_width");
+    if (!r.has("rt_parallel_lanes") && !inherits_lanes) m.rt_parallel_lanes = m.warp_width;
     if (r.has("rt_parallel_lanes"))
         m.rt_parallel_lanes = entry("rt_parallel_lanes").number("value", std::nullopt, 1.0, m.warp_width);
+    if (m.rt_parallel_lanes > m.warp_width)
+        r.fail("rt_parallel_lanes", "more overlapping lanes than the warp has (" + std::to_string(m.warp_width) + ")");
+    if (r.has("lockstep_events")) {
+        const JsonReader e = entry("lockstep_events");
+        const nlohmann::json& v = e.json()["value"];
+        if (!v.is_array()) e.fail("value", "expected a list of RT-unit event names, got " + describe(v));
+        m.lockstep_events.clear();
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const auto ev = v[i].is_string() ? event_from_name(v[i].get<std::string>()) : std::nullopt;
+            const std::string key = "value/" + std::to_string(i);
+            if (!ev) e.fail(key, "unknown event " + describe(v[i]) + " (see core/events.h)");
+            if (event_unit(*ev) != EventUnit::RtUnit)
+                e.fail(key, std::string(event_name(*ev)) + " is not RT-unit work: only those can move into the shader's loop");
+            if (std::find(m.lockstep_events.begin(), m.lockstep_events.end(), *ev) != m.lockstep_events.end())
+                e.fail(key, std::string(event_name(*ev)) + " is listed twice");
+            m.lockstep_events.push_back(*ev);
+        }
+    }
+    if (!m.lockstep_events.empty() && !m.warp())
+        r.fail("lockstep_events", "lockstep events need the warp model (\"model\": \"warp\")");
     return m;
 }
 

@@ -13,8 +13,15 @@
 //            intersection programs in rounds: round r serves each lane's r-th
 //              candidate and costs one hand-off (context switch) plus the most
 //              expensive active lane's program (its own events priced).
+//          A preset can name RT-unit events that its machine runs as shader
+//          code in the wave's own traversal loop (AMD RDNA: the loop, its
+//          stack and instance transforms are shader instructions, only the
+//          node tests are ray-accelerator instructions): those are priced in
+//          lockstep, the wave paying its slowest lane's, like shader work.
 // The formulas and their sources: docs/execution-model.md.
 #pragma once
+
+#include "core/events.h"
 
 #include <cstdint>
 #include <string>
@@ -32,6 +39,9 @@ struct ExecutionModel {
     int warp_width = 32;           // lanes per warp
     int tile_width = 8, tile_height = 4;  // the pixel tile a camera warp covers
     double rt_parallel_lanes = 32; // lanes whose RT-unit work overlaps (1..W)
+    // RT-unit events this machine runs as shader code in lockstep (empty on
+    // NVIDIA, whose RT core traverses on its own).
+    std::vector<Event> lockstep_events;
     std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
 
     [[nodiscard]] bool warp() const { return kind == ExecutionKind::Warp; }
@@ -43,8 +53,11 @@ struct ExecutionModel {
 
 // Reads the optional "execution" block of a cost preset:
 // {"model": {"value": "warp", "source": ...}, "warp_width": {...},
-//  "tile": {"value": [8, 4], ...}, "rt_parallel_lanes": {...}}.
-[[nodiscard]] ExecutionModel parse_execution_model(const JsonReader& block);
+//  "tile": {"value": [8, 4], ...}, "rt_parallel_lanes": {...},
+//  "lockstep_events": {"value": ["tlas_node_visit", ...], ...}.
+// Keys absent from the block keep `base`'s values (a derived preset's
+// execution block overrides its base's key by key).
+[[nodiscard]] ExecutionModel parse_execution_model(const JsonReader& block, const ExecutionModel& base = {});
 
 [[nodiscard]] const char* execution_name(ExecutionKind k);
 

@@ -57,18 +57,28 @@ WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& pr
     WavePrice p;
     if (wave.lanes.empty()) return p;
     // Shader work in lockstep: the wave pays its most expensive lane once.
-    std::size_t shader_lane = 0, rt_lane = 0;
-    double rt_max = -1.0;
+    std::size_t shader_lane = 0, rt_lane = 0, loop_lane = 0;
+    double rt_max = -1.0, loop_max = 0.0;
     std::uint32_t max_calls = 0;
+    // RT-unit events the machine runs as shader code (AMD's traversal loop):
+    // in lockstep, so the wave pays its slowest lane's loop, outside the unit.
+    const std::vector<Event>& loop = m.execution.lockstep_events;
     for (std::size_t i = 0; i < wave.lanes.size(); ++i) {
         const LaneWork& l = wave.lanes[i];
         const double s = price_of(l.counts, m, kShaderEvents);
         if (s > p.shader) p.shader = s, shader_lane = i;
-        const double r = price_of(l.counts, m, kRtEvents);
+        double r = price_of(l.counts, m, kRtEvents);
+        if (!loop.empty()) {
+            double in_loop = 0.0;
+            for (const Event e : loop) in_loop += static_cast<double>(l.counts[e]) * m[e];
+            r -= in_loop;
+            if (in_loop > loop_max) loop_max = in_loop, loop_lane = i;
+        }
         p.rt_lane_sum += r;
         if (r > rt_max) rt_max = r, rt_lane = i;
         max_calls = std::max(max_calls, l.calls);
     }
+    p.shader += loop_max;
     // RT unit: P lanes overlap; never faster than the slowest lane.
     const double parallel = std::max(1.0, m.execution.rt_parallel_lanes);
     const bool slowest_lane_bounds = rt_max >= p.rt_lane_sum / parallel;
@@ -107,6 +117,16 @@ WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& pr
             add_counts(*eff, wave.lanes[rt_lane].counts, kRtEvents, 1.0);
         } else {
             for (const LaneWork& l : wave.lanes) add_counts(*eff, l.counts, kRtEvents, 1.0 / parallel);
+        }
+        // The loop's events were priced at its slowest lane, not in the unit.
+        for (const Event e : loop) {
+            const auto i = static_cast<std::size_t>(e);
+            if (slowest_lane_bounds) {
+                (*eff)[i] -= static_cast<double>(wave.lanes[rt_lane].counts[e]);
+            } else {
+                for (const LaneWork& l : wave.lanes) (*eff)[i] -= static_cast<double>(l.counts[e]) / parallel;
+            }
+            (*eff)[i] += static_cast<double>(wave.lanes[loop_lane].counts[e]);
         }
         for (const std::uint8_t e : kHandOffEvents) (*eff)[e] += max_calls;
     }

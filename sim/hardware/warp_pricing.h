@@ -52,6 +52,8 @@ private:
 };
 
 struct WavePrice {
+    // shader: the wave's own shader work in lockstep, including a traversal
+    // loop the machine runs as shader code (ExecutionModel::lockstep_events).
     double shader = 0.0, rt = 0.0, handoff = 0.0, programs = 0.0;
     std::uint32_t rounds = 0;              // IS rounds: the most calls of any lane
     std::uint32_t active_lane_rounds = 0;  // sum over rounds of the lanes with a call

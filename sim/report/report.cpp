@@ -58,6 +58,8 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
             {"total", pr.total_cycles},
             {"per_ray", rays ? pr.total_cycles / static_cast<double>(rays) : 0.0},
             {"breakdown", breakdown}};
+        // Priced, but not what this machine builds (CostModel::hypothetical).
+        if (const std::string why = run.costs[p].hypothetical_reason(m.method); !why.empty()) entry["hypothetical"] = why;
         // What one intersection-program call costs on average under this
         // preset (its program events, priced per call): the derived figure of
         // a preset that prices operation classes (docs/execution-model.md).
@@ -306,7 +308,10 @@ Table speedup_table(const std::vector<RunResult>& runs) {
                     continue;
                 }
                 const double s = r.speedup(m.method, p);
-                row.push_back(s > 0 ? format_speedup_interval(s, r.speedup_interval(m.method, p)) : "n/a");
+                // "hyp.": priced, but the machine does not build it (its preset says why).
+                const bool hypothetical = !r.costs[p].hypothetical_reason(m.method).empty();
+                row.push_back(s > 0 ? format_speedup_interval(s, r.speedup_interval(m.method, p)) + (hypothetical ? " hyp." : "")
+                                    : "n/a");
             }
             t.add_row(row);
         }

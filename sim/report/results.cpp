@@ -116,6 +116,8 @@ std::string results_csv(const std::vector<RunResult>& runs) {
                 if (!m.runnable) reason = m.reason;
                 else if (!priced) reason = "the preset's hardware has no " + m.priced[p].missing_feature;
                 else if (!base_priced) reason = "the baseline " + r.config.baseline + " is n/a under this preset";
+                else if (const std::string why = cost.hypothetical_reason(m.method); !why.empty())
+                    reason = "hypothetical on this machine: " + why;
                 const double mem = m.runnable ? m.memory.total() : NAN;
                 const double overhead = m.method == r.config.baseline ? (m.runnable ? 0.0 : NAN)
                                                                       : r.memory_overhead_percent(m.method);

@@ -37,7 +37,7 @@ bool is_preset_name(const std::string& value) {
 
 std::string resolve_preset(const std::string& value, const std::string& config_file, const std::string& key) {
     const std::string where = config_file + ": " + key + ": ";
-    if (value.empty()) throw InputError(where + "expected a preset name such as \"turing-guess\" or a path");
+    if (value.empty()) throw InputError(where + "expected a preset name such as \"turing-calibrated\" or a path");
     if (!is_preset_name(value)) {
         const std::string path = config_relative_path(value, config_file);
         std::error_code ec;

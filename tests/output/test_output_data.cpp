@@ -143,7 +143,7 @@ TEST_CASE("output npy: header layout, round trip, and errors naming the file") {
 TEST_CASE("output data: a paired sweep gives tidy results.csv, a combined report.json and arrays summing to totals") {
     const std::string out = out_dir("sweep");
     run(out, {"sweep={\"scene\":[{\"count\":1,\"radius\":0.1},{\"count\":20,\"radius\":0.01}],\"scene.tilt_deg\":[0,45]}",
-              "cost=[\"../../configs/hw/turing-calibrated.json\",\"../../configs/hw/turing-guess.json\"]",
+              "cost=[\"../../configs/hw/turing-calibrated.json\",\"../../configs/hw/turing-per-ray-guess.json\"]",
               "output={\"images\":false}", "workload.width=20", "workload.height=16"});
     const auto rows = csv_rows(read_text_file(out + "/results.csv"));
     REQUIRE(rows.size() == 1 + 4 * 2 * 2);  // header + points x methods x presets
@@ -168,7 +168,7 @@ TEST_CASE("output data: a paired sweep gives tidy results.csv, a combined report
         ++presets[r[preset] + "/" + r[execution]];
     }
     CHECK(presets["turing-calibrated/warp"] == 8);
-    CHECK(presets["turing-guess/per_ray"] == 8);
+    CHECK(presets["turing-per-ray-guess/per_ray"] == 8);
     CHECK(rows[1][count] == "1");
     CHECK(rows[1][radius] == "0.1");
 
@@ -186,8 +186,8 @@ TEST_CASE("output data: a paired sweep gives tidy results.csv, a combined report
     const nlohmann::json& s = all["points"][3]["report"]["speedup_over_ref"]["obb"];
     bool found = false;
     for (std::size_t i = 1; i < rows.size(); ++i)
-        if (rows[i][col("point")] == "3" && rows[i][method] == "obb" && rows[i][preset] == "turing-guess") {
-            CHECK(std::stod(rows[i][speedup]) == doctest::Approx(s["turing-guess"].get<double>()));
+        if (rows[i][col("point")] == "3" && rows[i][method] == "obb" && rows[i][preset] == "turing-per-ray-guess") {
+            CHECK(std::stod(rows[i][speedup]) == doctest::Approx(s["turing-per-ray-guess"].get<double>()));
             found = true;
         }
     CHECK(found);
@@ -199,13 +199,13 @@ TEST_CASE("output data: a ray-file run writes per-ray counts that sum to the tot
     check_arrays(first, true);
     const std::string out = out_dir("rays");
     run(out, {"workload={\"type\":\"rays\",\"rays_file\":\"" + first + "/rays.bin\"}",
-              "cost=[\"../../configs/hw/turing-calibrated.json\",\"../../configs/hw/turing-guess.json\"]",
+              "cost=[\"../../configs/hw/turing-calibrated.json\",\"../../configs/hw/turing-per-ray-guess.json\"]",
               "output.images=false"});
     CHECK(!fs::exists(fs::path(out) / "render.png"));
     check_arrays(out, false);
     const nlohmann::json side = json_at(fs::path(out) / "arrays.json");
     CHECK(side["methods"]["ref"]["cycles"]["turing-calibrated"].contains("n/a"));
-    CHECK(side["methods"]["ref"]["cycles"]["turing-guess"]["file"] == "cycles_ref_turing-guess.npy");
+    CHECK(side["methods"]["ref"]["cycles"]["turing-per-ray-guess"]["file"] == "cycles_ref_turing-per-ray-guess.npy");
     // output.arrays=false writes none.
     const std::string none = out_dir("no_arrays");
     run(none, {"output={\"images\":false,\"arrays\":false}", "workload.width=8", "workload.height=8"});

@@ -56,7 +56,7 @@ TEST_CASE("output sweep plots: a paired axis is one series on a log axis labelle
     CHECK(occurrences(svg, "<polyline") == 1);  // one series, not one per point
     CHECK(svg.find(">count, radius (log scale)<") != std::string::npos);
     CHECK(svg.find(">1000, 0.003<") != std::string::npos);
-    CHECK(svg.find("cost preset turing-guess") != std::string::npos);
+    CHECK(svg.find("cost preset turing-per-ray-guess") != std::string::npos);
     CHECK(svg.find('{') == std::string::npos);  // no raw JSON anywhere
     CHECK(svg_width(svg) <= 1200);
     const std::string area = read_text_file((out / "speedup_vs_area_ratio.svg").string());

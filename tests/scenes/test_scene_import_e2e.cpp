@@ -19,7 +19,7 @@ nlohmann::json run_scene(const std::string& name, const nlohmann::json& scene) {
         {"scene", scene},
         {"primitives", {{"kind", "capsule"}}},
         {"methods", {"ref", "obb"}},
-        {"cost", {(source / "configs/hw/turing-guess.json").string()}},
+        {"cost", {(source / "configs/hw/turing-per-ray-guess.json").string()}},
         {"memory", (source / "configs/hw/memory-optix7.json").string()},
         {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 24}, {"height", 24}, {"spp", 1}, {"bounces", 1}}},
         {"output", {{"images", false}, {"rays", false}, {"hits", true}}}};

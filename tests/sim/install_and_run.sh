@@ -33,7 +33,7 @@ CURVES
 cat > "$tmp/project/run.json" <<'CONFIG'
 {
   "scene": {"type": "file", "curves": {"path": "data/curves.txt"}},
-  "cost": ["turing-calibrated", "turing-guess"],
+  "cost": ["turing-calibrated", "turing-per-ray-guess"],
   "memory": "memory-dxr",
   "workload": {"type": "camera", "width": 16, "height": 16, "spp": 1, "bounces": 1},
   "output": {"images": false}

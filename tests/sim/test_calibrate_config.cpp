@@ -36,7 +36,7 @@ const char* kGood = R"({"calibrate": {
     {"label": "hair", "speedup": 5.9}],
   "output": "configs/hw/turing-calibrated.json",
   "name": "turing-calibrated",
-  "start": "../hw/turing-guess.json",
+  "start": "../hw/turing-per-ray-guess.json",
   "reference": "Wald et al. 2020 synthetic table"}})";
 
 }  // namespace
@@ -44,7 +44,7 @@ const char* kGood = R"({"calibrate": {
 TEST_CASE("calibrate config: a full block parses") {
     const CalibrateDesc d = parse(kGood);
     REQUIRE(d.parameters.size() == 2);
-    CHECK(d.start == "../hw/turing-guess.json");
+    CHECK(d.start == "../hw/turing-per-ray-guess.json");
     CHECK(d.parameters[0].events == std::vector<Event>{Event::ContextSwitch});
     CHECK(d.parameters[0].lo == 50);
     CHECK(d.parameters[0].hi == 1000);

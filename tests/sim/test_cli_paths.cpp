@@ -100,7 +100,7 @@ TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") 
     const fs::path dir = scratch("elsewhere");
     write(dir / "cfg" / "data" / "strands.txt", "0 0 0 0.02\n0 0.5 0 0.02\n\n0.2 0 0 0.02\n0.2 0.5 0.1 0.01\n");
     write(dir / "cfg" / "run.json", R"({"scene": {"type": "file", "curves": {"path": "data/strands.txt"}},
-        "cost": ["turing-guess", "turing-calibrated"], "memory": "memory-dxr",
+        "cost": ["turing-per-ray-guess", "turing-calibrated"], "memory": "memory-dxr",
         "workload": {"width": 8, "height": 8, "spp": 1, "bounces": 0}, "output": {"images": false}})");
     const fs::path out = dir / "out";
     {
@@ -110,7 +110,7 @@ TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") 
     const json r = report_of(out);
     CHECK(r["scene"]["strands"] == 2);
     const json& presets = r["provenance"]["presets"];
-    CHECK(fs::path(presets["cost"][0]["file"].get<std::string>()).filename() == "turing-guess.json");
+    CHECK(fs::path(presets["cost"][0]["file"].get<std::string>()).filename() == "turing-per-ray-guess.json");
     CHECK(presets["cost"][1]["name"] == "turing-calibrated");
     CHECK(presets["memory"]["contents"]["name"] ==
           json::parse(read_text_file(presets["memory"]["file"].get<std::string>()))["name"]);
@@ -132,7 +132,7 @@ TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") 
 TEST_CASE("paths: a missing preset names its key and the places searched") {
     const std::string file = (scratch("preset") / "run.json").string();
     json config = json::parse(read_text_file(kTiny));
-    config["cost"] = json::array({"turing-guess", "no-such-preset"});
+    config["cost"] = json::array({"turing-per-ray-guess", "no-such-preset"});
     try {
         (void)plan_runs(config, file);
         FAIL("no error");
@@ -145,14 +145,14 @@ TEST_CASE("paths: a missing preset names its key and the places searched") {
     CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains("/cost: no such preset file"), InputError);
     // RTCSIM_PRESET_DIR comes first.
     const fs::path mine = scratch("preset_dir");
-    json preset = json::parse(read_text_file(RTCSIM_SOURCE_DIR "/configs/hw/turing-guess.json"));
+    json preset = json::parse(read_text_file(RTCSIM_SOURCE_DIR "/configs/hw/turing-per-ray-guess.json"));
     preset["name"] = "my-guess";
-    write(mine / "turing-guess.json", preset.dump());
+    write(mine / "turing-per-ray-guess.json", preset.dump());
     ::setenv("RTCSIM_PRESET_DIR", mine.c_str(), 1);
     CHECK(preset_dirs().front() == mine);
-    CHECK(resolve_preset("turing-guess", file, "/cost/0") == (mine / "turing-guess.json").string());
+    CHECK(resolve_preset("turing-per-ray-guess", file, "/cost/0") == (mine / "turing-per-ray-guess.json").string());
     ::unsetenv("RTCSIM_PRESET_DIR");
-    CHECK(resolve_preset("turing-guess", file, "/cost/0") != (mine / "turing-guess.json").string());
+    CHECK(resolve_preset("turing-per-ray-guess", file, "/cost/0") != (mine / "turing-per-ray-guess.json").string());
     CHECK(is_preset_name("memory-optix7"));
     CHECK_FALSE(is_preset_name("memory-optix7.json"));
     CHECK_FALSE(is_preset_name("../hw/memory-optix7"));
@@ -183,8 +183,8 @@ TEST_CASE("output directory: refused when not empty, --force clears only what si
 TEST_CASE("calibrate: an existing output file is refused before tracing, unless --force") {
     const fs::path dir = scratch("calibrate");
     const std::string file = (dir / "fit.json").string();
-    const json config = {{"calibrate", {{"output", "../hw/turing-guess.json"}}}};
-    CHECK(calibrate_output_path(config, file, false) == (dir.parent_path() / "hw" / "turing-guess.json").string());
+    const json config = {{"calibrate", {{"output", "../hw/turing-per-ray-guess.json"}}}};
+    CHECK(calibrate_output_path(config, file, false) == (dir.parent_path() / "hw" / "turing-per-ray-guess.json").string());
     write(dir / "taken.json", "{}");
     const json taken = {{"calibrate", {{"output", "taken.json"}}}};
     CHECK_THROWS_WITH_AS((void)calibrate_output_path(taken, file, false),
@@ -236,7 +236,7 @@ TEST_CASE("sweep: the first key varies slowest, in the order written") {
     CHECK(expand_sweep(json::parse(text), "x.json")[1].label == "memory=memory-optix7 scene.tilt_deg=30");
     // --set sweep={...} replaces the order; --set sweep.key=[...] appends.
     CHECK(sweep_key_order(text, {R"(sweep={"b": [1], "a": [2]})"}) == std::vector<std::string>{"b", "a"});
-    CHECK(sweep_key_order(text, {R"(sweep.cost=["turing-guess"])"}).back() == "cost");
+    CHECK(sweep_key_order(text, {R"(sweep.cost=["turing-per-ray-guess"])"}).back() == "cost");
 }
 
 TEST_CASE("sweep: points that differ only in presets are re-priced, not traced, with the same results") {
@@ -245,14 +245,14 @@ TEST_CASE("sweep: points that differ only in presets are re-priced, not traced, 
                                          "--set", "workload.height=12", "--set", "output.rays=false",
                                          "--set", "output.hits=false"};
     auto sweep = small;
-    sweep.insert(sweep.end(), {"--set", R"(sweep={"scene.tilt_deg": [0, 30], "memory": ["memory-optix7", "memory-dxr"], "cost": ["turing-guess", "turing-per-ray-calibrated"]})",
+    sweep.insert(sweep.end(), {"--set", R"(sweep={"scene.tilt_deg": [0, 30], "memory": ["memory-optix7", "memory-dxr"], "cost": ["turing-per-ray-guess", "turing-per-ray-calibrated"]})",
                                kTiny, "--out", (dir / "sweep").string()});
     REQUIRE(simulate(sweep) == 0);
     const fs::path point3 = dir / "sweep" / "3_scene.tilt_deg=0_memory=memory-dxr_cost=turing-per-ray-calibrated";
     REQUIRE(fs::exists(point3 / "report.json"));
-    CHECK(report_of(dir / "sweep" / "0_scene.tilt_deg=0_memory=memory-optix7_cost=turing-guess")["provenance"]["repriced"] == false);
+    CHECK(report_of(dir / "sweep" / "0_scene.tilt_deg=0_memory=memory-optix7_cost=turing-per-ray-guess")["provenance"]["repriced"] == false);
     CHECK(report_of(point3)["provenance"]["repriced"] == true);
-    CHECK(report_of(dir / "sweep" / "4_scene.tilt_deg=30_memory=memory-optix7_cost=turing-guess")["provenance"]["repriced"] == false);
+    CHECK(report_of(dir / "sweep" / "4_scene.tilt_deg=30_memory=memory-optix7_cost=turing-per-ray-guess")["provenance"]["repriced"] == false);
     // The same point traced on its own gives the same report.
     auto single = small;
     single.insert(single.end(), {"--set", "scene.tilt_deg=0", "--set", "memory=memory-dxr", "--set",

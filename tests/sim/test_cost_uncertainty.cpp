@@ -16,10 +16,10 @@ using namespace rtc;
 
 namespace {
 
-// turing-guess with a block over context_switch (value 200) and a scale on
+// turing-per-ray-guess with a block over context_switch (value 200) and a scale on
 // the box tests; `covariance` over those two free parameters.
 nlohmann::json preset_json(const nlohmann::json& covariance) {
-    nlohmann::json j = nlohmann::json::parse(read_text_file(std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/turing-guess.json"));
+    nlohmann::json j = nlohmann::json::parse(read_text_file(std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/turing-per-ray-guess.json"));
     j["uncertainty"] = {
         {"source", "test"},
         {"parameters",

@@ -67,8 +67,8 @@ TEST_CASE("method seam: a method added from the test tree runs in simulate besid
     const auto& speedups = r.at("speedup_over_ref");
     REQUIRE(speedups.contains("obb"));
     REQUIRE(speedups.contains("test-brute"));
-    const double brute = speedups["test-brute"]["turing-guess"].get<double>();
-    const double obb = speedups["obb"]["turing-guess"].get<double>();
+    const double brute = speedups["test-brute"]["turing-per-ray-guess"].get<double>();
+    const double obb = speedups["obb"]["turing-per-ray-guess"].get<double>();
     CHECK(obb > 1.0);
     CHECK(brute > 0.0);
     CHECK(brute < 1.0);  // 60 programs per ray cost more than ref's few
@@ -99,7 +99,7 @@ TEST_CASE("method seam: the baseline is named in the config and must be one of i
                            "workload.width=16", "--set", "workload.height=16", "--set", "output.images=false"}) == 0);
     const nlohmann::json r = nlohmann::json::parse(read_text_file((out / "report.json").string()));
     REQUIRE(r.contains("speedup_over_test-brute"));
-    CHECK(r["speedup_over_test-brute"]["ref"]["turing-guess"].get<double>() > 1.0);
+    CHECK(r["speedup_over_test-brute"]["ref"]["turing-per-ray-guess"].get<double>() > 1.0);
     CHECK(simulate_main({"tests/configs/tiny.json", "--quiet", "--out", out.string(), "--set",
                          R"(methods=["ref","obb"])", "--set", "baseline=test-brute"}) == 2);
     CHECK(simulate_main({"tests/configs/tiny.json", "--quiet", "--out", out.string(), "--set",

@@ -131,7 +131,7 @@ TEST_CASE("shard plan: every point and band runs in exactly one shard") {
 
 TEST_CASE("shard merge: a frame cut into bands merges into the single run, per-ray and warp presets") {
     check_sharded_equals_single("frame", {kTiny, "--set", "output.rays=false", "--set",
-                                          "cost=[\"turing-calibrated\",\"turing-guess\",\"turing-per-ray-calibrated\"]"},
+                                          "cost=[\"turing-calibrated\",\"turing-per-ray-guess\",\"turing-per-ray-calibrated\"]"},
                                 4);
 }
 

@@ -65,8 +65,8 @@ TEST_CASE("sweep: cartesian product with paired object axes, first key slowest")
 }
 
 TEST_CASE("cost model: presets load, pricing is linear, errors name the key") {
-    const CostModel guess = load_cost_model(RTCSIM_SOURCE_DIR "/configs/hw/turing-guess.json");
-    CHECK(guess.name == "turing-guess");
+    const CostModel guess = load_cost_model(RTCSIM_SOURCE_DIR "/configs/hw/turing-per-ray-guess.json");
+    CHECK(guess.name == "turing-per-ray-guess");
     for (std::size_t i = 0; i < kEventCount; ++i) CHECK(!guess.source[i].empty());
 
     EventTotals a, b;

@@ -61,7 +61,7 @@ TEST_CASE("hostile config: number overflow in a config or a preset names the fil
     check_starts(error_of(config.string()), config.string() + ": line 2: invalid JSON",
                  "number overflow parsing '1e400'");
     const fs::path preset = scratch("preset.json");
-    std::string text = read_text_file("configs/hw/turing-guess.json");
+    std::string text = read_text_file("configs/hw/turing-per-ray-guess.json");
     const auto at = text.find("\"value\": ");
     REQUIRE(at != std::string::npos);
     text.insert(at + 9, "1e400, \"was\": ");

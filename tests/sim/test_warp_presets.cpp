@@ -15,7 +15,7 @@ using namespace rtc;
 namespace {
 
 std::string preset_with(const std::string& execution) {
-    nlohmann::json j = nlohmann::json::parse(read_text_file(std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/turing-guess.json"));
+    nlohmann::json j = nlohmann::json::parse(read_text_file(std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/turing-per-ray-guess.json"));
     j["execution"] = nlohmann::json::parse(execution);
     return j.dump();
 }
@@ -57,7 +57,7 @@ TEST_CASE("warp presets: the execution block") {
 TEST_CASE("program pricing: a preset prices operation classes or programs by name, never both") {
     const std::string dir = std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/";
     const CostModel by_ops = load_cost_model(dir + "turing-calibrated.json");
-    const CostModel by_name = load_cost_model(dir + "turing-guess.json");
+    const CostModel by_name = load_cost_model(dir + "turing-per-ray-guess.json");
     CHECK(by_ops.program_pricing == ProgramPricing::ByOperation);
     CHECK(by_name.program_pricing == ProgramPricing::ByName);
     // The shipped calibrated preset has no per-kind program constant.

@@ -96,7 +96,9 @@ CostUncertainty parse_cost_uncertainty(const JsonReader& r, const std::array<dou
         p.allow_only({"events", "tie", "value", "min", "max", "free"});
         UncertainParameter q;
         const nlohmann::json& ev = p.json().contains("events") ? p.json()["events"] : nlohmann::json();
-        if (!ev.is_array() || ev.empty()) p.fail("events", "expected a non-empty list of event names");
+        // Empty: a fitted parameter none of whose events this preset takes
+        // from the fit (a derived preset replaced them); it keeps its row.
+        if (!ev.is_array()) p.fail("events", "expected a list of event names");
         for (std::size_t i = 0; i < ev.size(); ++i) {
             const auto e = ev[i].is_string() ? event_from_name(ev[i].get<std::string>()) : std::nullopt;
             const std::string key = "events/" + std::to_string(i);
@@ -192,6 +194,7 @@ std::vector<CostModel> draw_cost_models(const CostModel& model, std::size_t n, s
             // Both ties: the events' costs move by the factor the value moves.
             for (Event e : p.events) c[e] = model[e] * (v / p.value);
         }
+        c.settle();  // costs made of the drawn ones follow them
         out.push_back(std::move(c));
     }
     return out;

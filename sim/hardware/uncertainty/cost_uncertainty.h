@@ -25,7 +25,7 @@ struct CostModel;
 
 // One fitted number of the calibration (calibrate.h's FitParameter at its optimum).
 struct UncertainParameter {
-    std::vector<Event> events;  // non-empty, each event in one parameter only
+    std::vector<Event> events;  // each event in one parameter only (empty: none taken from the fit)
     bool scale = false;  // tie "scale": the events cost their start cost x value; "value": each costs value
     double value = 0.0;  // fitted: cycles ("value"), or the factor ("scale")
     double lo = 0.0, hi = 0.0;  // the fit's bounds; draws are clamped into them

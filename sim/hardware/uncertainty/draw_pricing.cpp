@@ -7,11 +7,12 @@ namespace rtc {
 
 namespace {
 
-void split_unit(EventUnit unit, const DrawSet& set, std::vector<std::uint8_t>& fixed,
+template <class InUnit>
+void split_unit(InUnit in_unit, const DrawSet& set, std::vector<std::uint8_t>& fixed,
                 std::vector<std::uint8_t>& changed, std::vector<double>& cost) {
     const std::size_t n = set.draws.size();
     for (std::size_t e = 0; e < kEventCount; ++e) {
-        if (kEventUnits[e] != unit) continue;
+        if (!in_unit(static_cast<Event>(e))) continue;
         const bool differs = std::any_of(set.draws.begin(), set.draws.end(),
                                          [&](const CostModel* m) { return m->cycles[e] != set.base->cycles[e]; });
         (differs ? changed : fixed).push_back(static_cast<std::uint8_t>(e));
@@ -23,8 +24,15 @@ void split_unit(EventUnit unit, const DrawSet& set, std::vector<std::uint8_t>& f
 }  // namespace
 
 WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.size()) {
-    split_unit(EventUnit::Shader, set, shader_.fixed, shader_.changed, shader_.cost);
-    split_unit(EventUnit::RtUnit, set, rt_.fixed, rt_.changed, rt_.cost);
+    // As price_wave: a machine's lockstep events (its shader traversal loop)
+    // leave the RT unit and are priced at the wave's slowest lane.
+    const std::vector<Event>& loop = set.base->execution.lockstep_events;
+    const auto in_loop = [&](Event e) { return std::find(loop.begin(), loop.end(), e) != loop.end(); };
+    split_unit([](Event e) { return event_unit(e) == EventUnit::Shader; }, set, shader_.fixed, shader_.changed,
+               shader_.cost);
+    split_unit([&](Event e) { return event_unit(e) == EventUnit::RtUnit && !in_loop(e); }, set, rt_.fixed,
+               rt_.changed, rt_.cost);
+    split_unit(in_loop, set, loop_.fixed, loop_.changed, loop_.cost);
     for (const CostModel* m : set.draws) {
         double h = 0.0;
         for (std::size_t e = 0; e < kEventCount; ++e)
@@ -33,7 +41,7 @@ WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.si
         for (std::size_t k = 0; k < kProgramEventCount; ++k)
             programs_change_ = programs_change_ || m->cycles[kProgramEvents[k]] != set.base->cycles[kProgramEvents[k]];
     }
-    for (std::vector<double>* v : {&shader_max_, &rt_max_, &rt_sum_, &lane_}) v->assign(n_, 0.0);
+    for (std::vector<double>* v : {&shader_max_, &loop_max_, &rt_max_, &rt_sum_, &lane_}) v->assign(n_, 0.0);
 }
 
 void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum) {
@@ -93,6 +101,11 @@ void WaveDrawPricer::add(const WaveWork& wave, WarpTotals* totals) {
     std::fill(shader_max_.begin(), shader_max_.end(), 0.0);  // price_wave: max(0, lanes)
     std::fill(rt_max_.begin(), rt_max_.end(), -1.0);
     unit_prices(wave, shader_, shader_max_.data(), nullptr);
+    if (!loop_.fixed.empty() || !loop_.changed.empty()) {
+        std::fill(loop_max_.begin(), loop_max_.end(), 0.0);
+        unit_prices(wave, loop_, loop_max_.data(), nullptr);
+        for (std::size_t d = 0; d < n; ++d) shader_max_[d] += loop_max_[d];
+    }
     unit_prices(wave, rt_, rt_max_.data(), rt_sum_.data());
     std::uint32_t max_calls = 0;
     for (const LaneWork& l : wave.lanes) max_calls = std::max(max_calls, l.calls);

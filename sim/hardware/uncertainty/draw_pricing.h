@@ -42,7 +42,7 @@ private:
 
     const DrawSet* set_;
     std::size_t n_ = 0;  // draws
-    Unit shader_, rt_;
+    Unit shader_, rt_, loop_;  // loop_: the preset's lockstep events (ExecutionModel)
     std::vector<double> handoff_;       // per draw: the cost of one hand-off
     bool programs_change_ = false;
     ProgramPrices base_prices_;         // programs priced once when no draw changes them
@@ -50,7 +50,7 @@ private:
     // max (slowest lane) and, unless null, sum over the wave's lanes of unit u, per draw.
     void unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum);
     // Scratch: per draw; the undominated lanes (fixed sum, then the changed counts).
-    std::vector<double> shader_max_, rt_max_, rt_sum_, lane_, worst_, cand_, counts_;
+    std::vector<double> shader_max_, loop_max_, rt_max_, rt_sum_, lane_, worst_, cand_, counts_;
 };
 
 }  // namespace rtc

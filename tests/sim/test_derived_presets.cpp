@@ -1,0 +1,218 @@
+// Hardware presets after Turing (issue "Predictions for the hardware after
+// Turing"): each is turing-calibrated plus sourced deltas, so every hardware
+// preset runs the warp model and inherits the fit's covariance; the same
+// arithmetic has the same price in every method (sum_of); AMD's traversal
+// loop runs in lockstep as shader code (lockstep events), and its batched
+// draw pricing equals pricing each draw wave by wave.
+#include "core/input_error.h"
+#include "sim/hardware/cost_model.h"
+#include "sim/hardware/presets/derived_preset.h"
+#include "sim/hardware/warp_pricing.h"
+#include "sim/plot/plot_svg.h"
+#include "sim/run/simulation.h"
+#include "sim/util/json_file.h"
+
+#include <doctest/doctest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+using namespace rtc;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kHw = std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/";
+
+CostModel shipped(const std::string& name) { return load_cost_model(kHw + name + ".json"); }
+
+// A scratch folder with a copy of turing-calibrated.json, for derived presets.
+fs::path scratch() {
+    const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
+    fs::create_directories(dir);
+    fs::copy_file(kHw + "turing-calibrated.json", dir / "turing-calibrated.json", fs::copy_options::overwrite_existing);
+    return dir;
+}
+
+std::string error_of(const fs::path& dir, const nlohmann::json& preset) {
+    const fs::path p = dir / "derived.json";
+    write_text_file(p.string(), preset.dump(2));
+    try {
+        (void)load_cost_model(p.string());
+    } catch (const InputError& e) {
+        return std::string(e.what()).substr(p.string().size());
+    }
+    return "";
+}
+
+nlohmann::json derived(nlohmann::json deltas) {
+    return {{"name", "d"}, {"derived_from", "turing-calibrated.json"}, {"deltas", std::move(deltas)}};
+}
+
+RayCounts counts_of(std::initializer_list<std::pair<Event, std::uint32_t>> l) {
+    RayCounts c;
+    for (const auto& [e, n] : l) c.n[static_cast<std::size_t>(e)] = n;
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("derived presets: deltas scale, replace or compose, the rest is the base's with its name") {
+    const CostModel turing = shipped("turing-calibrated"), ampere = shipped("ampere"), ada = shipped("ada");
+    CHECK(ampere.derived_from == "turing-calibrated");
+    CHECK(ampere.execution.warp());
+    CHECK(ampere[Event::TriangleTest] == 0.5 * turing[Event::TriangleTest]);
+    CHECK(ampere[Event::OpFma] == 0.5 * turing[Event::OpFma]);
+    CHECK(ampere[Event::OpSqrt] == turing[Event::OpSqrt]);
+    CHECK(ada[Event::TriangleTest] == 0.25 * turing[Event::TriangleTest]);
+    CHECK(ampere.source[static_cast<std::size_t>(Event::Ray)].rfind("turing-calibrated: fitted by rtcsim calibrate", 0) == 0);
+    CHECK(ampere.source[static_cast<std::size_t>(Event::TriangleTest)].rfind("[D] NVIDIA GA102", 0) == 0);
+
+    // The fit's covariance is inherited: draw d of ampere moves the fitted
+    // costs exactly as draw d of turing-calibrated does.
+    REQUIRE(ampere.uncertainty);
+    const auto t = draw_cost_models(turing, 8, 5), a = draw_cost_models(ampere, 8, 5);
+    REQUIRE(a.size() == 8);
+    bool ray_moves = false;
+    for (std::size_t d = 0; d < a.size(); ++d) {
+        CHECK(a[d][Event::Ray] == t[d][Event::Ray]);
+        CHECK(a[d][Event::BlasNodeVisit] == t[d][Event::BlasNodeVisit]);
+        CHECK(a[d][Event::TriangleTest] == 0.5 * t[d][Event::TriangleTest]);
+        ray_moves = ray_moves || a[d][Event::Ray] != ampere[Event::Ray];
+    }
+    CHECK(ray_moves);
+
+    // A replaced cost leaves the fit: rdna3's loop is priced by its operations,
+    // which no draw moves, while its box tests keep the fit's interval.
+    const CostModel rdna3 = shipped("rdna3");
+    const auto r = draw_cost_models(rdna3, 8, 5);
+    for (std::size_t d = 0; d < r.size(); ++d) {
+        CHECK(r[d][Event::BlasNodeVisit] == rdna3[Event::BlasNodeVisit]);
+        CHECK(r[d][Event::BlasBoxTest] == t[d][Event::BlasBoxTest]);
+        CHECK(r[d][Event::TriangleTest] == 4.0 * r[d][Event::BlasBoxTest]);  // sum_of follows the draw
+    }
+    CHECK(rdna3[Event::BlasNodeVisit] == doctest::Approx(12 * turing[Event::OpFma] + 3 * turing[Event::OpBranch]));
+
+    // The flattened form reads back to the same costs (report.json, shards).
+    const CostModel again = parse_cost_model(cost_model_to_json(rdna3), "again.json");
+    CHECK(again.cycles == rdna3.cycles);
+    CHECK(again.execution.lockstep_events == rdna3.execution.lockstep_events);
+    CHECK(again.uncertainty->parameters.size() == rdna3.uncertainty->parameters.size());
+}
+
+TEST_CASE("derived presets: every error names the file and JSON path") {
+    const fs::path dir = scratch();
+    CHECK(error_of(dir, derived({{{"events", {"ray"}}, {"scale", 2}, {"source", "a guess"}}})) ==
+          ": /deltas/0/source: tag the source [D] documented, [M] measured, [C] read from code or [I] inferred");
+    CHECK(error_of(dir, derived({{{"events", {"rays"}}, {"scale", 2}, {"source", "[I] x"}}}))
+              .find(": /deltas/0/events/0: unknown event") == 0);
+    CHECK(error_of(dir, derived({{{"events", {"is_capsule"}}, {"value", 2}, {"source", "[I] x"}}}))
+              .find(": /deltas/0/events/0: preset \"d\" does not price is_capsule (it prices programs by operation class") == 0);
+    CHECK(error_of(dir, derived({{{"events", {"ray"}}, {"scale", 2}, {"source", "[I] x"}},
+                                 {{"events", {"ray"}}, {"value", 2}, {"source", "[I] y"}}})) ==
+          ": /deltas/1/events/0: ray is changed by an earlier delta: merge the two");
+    CHECK(error_of(dir, derived({{{"events", {"obb_box_test"}}, {"scale", 2}, {"source", "[I] x"}}}))
+              .find(": /deltas/0/events/0: obb_box_test is a sum of other costs in turing-calibrated") == 0);
+    CHECK(error_of(dir, derived({{{"events", {"ray"}}, {"scale", 2}, {"value", 3}, {"source", "[I] x"}}})) ==
+          ": /deltas/0: give exactly one of \"scale\", \"value\" or \"sum_of\"");
+    // Sums of sums are computed in order; a cycle is refused.
+    CHECK(error_of(dir, derived({{{"events", {"instance_transform"}}, {"sum_of", {{"obb_box_test", 1}}}, {"source", "[I] x"}}}))
+              .find(": /deltas: sums of costs refer to each other in a cycle") == 0);
+    // A preset deriving from itself stops, with an error, not a stack overflow.
+    nlohmann::json self = derived(nlohmann::json::array());
+    self["derived_from"] = "derived.json";
+    CHECK(error_of(dir, self).find("derive from each other more than 8 deep") != std::string::npos);
+    nlohmann::json missing = derived(nlohmann::json::array());
+    missing["derived_from"] = "nope.json";
+    CHECK(error_of(dir, missing).find(": /derived_from: no preset file " + (dir / "nope.json").string()) == 0);
+
+    // In a plain preset: a sum_of whose written value is not the sum.
+    nlohmann::json plain = nlohmann::json::parse(read_text_file(kHw + "turing-calibrated.json"));
+    plain["cycles"]["obb_box_test"]["value"] = 1.0;
+    CHECK_THROWS_WITH_AS((void)parse_cost_model(plain.dump(), "p.json"),
+                         doctest::Contains("p.json: /cycles/obb_box_test/value: 1.0 is not the sum of its terms"), InputError);
+}
+
+TEST_CASE("shipped presets: hardware presets run the warp model, carry sources and an interval, same work at the same price") {
+    int hardware = 0;
+    for (const auto& entry : fs::directory_iterator(kHw)) {
+        const std::string file = entry.path().filename().string();
+        if (entry.path().extension() != ".json" || file.rfind("memory-", 0) == 0) continue;
+        CAPTURE(file);
+        const CostModel m = load_cost_model(entry.path().string());
+        // The per-ray model stays only where the name says so.
+        CHECK(m.execution.warp() == (m.name.find("per-ray") == std::string::npos));
+        for (std::size_t i = 0; i < kEventCount; ++i) {
+            CAPTURE(kEventNames[i]);
+            if (m.prices(static_cast<Event>(i))) CHECK(!m.source[i].empty());
+        }
+        if (m.derived_from.empty()) continue;
+        ++hardware;
+        CHECK(m.uncertainty);  // derived from a fitted preset: speedups carry intervals
+        // An oriented box test is a ray transform plus a box test wherever it is priced.
+        CHECK(m[Event::ObbBoxTest] == doctest::Approx(m[Event::InstanceTransform] + m[Event::BlasBoxTest]));
+        CHECK(m[Event::LssTest] == doctest::Approx(2.0 * m[Event::TriangleTest]));
+    }
+    CHECK(hardware == 6);  // ampere, ada, blackwell, hypothetical-obb, rdna3, rdna4
+    CHECK(shipped("rdna4").hypothetical_reason("obb-quantized").find("[C] AMD GPURT") == 0);
+    CHECK(shipped("rdna4").execution.lockstep_events.size() == 2);  // instance transforms in hardware
+}
+
+TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest lane, outside the RT unit") {
+    CostModel m;
+    for (std::size_t e = 0; e < kEventCount; ++e) m.cycles[e] = 1.0;
+    m[Event::BlasNodeVisit] = 3;
+    m[Event::BlasBoxTest] = 2;
+    m.execution.kind = ExecutionKind::Warp;
+    m.execution.rt_parallel_lanes = 1.0;  // the unit's work sums over lanes
+    WaveWork w;
+    CallProfiles table;
+    w.profiles = &table;
+    w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasNodeVisit, 10}, {Event::BlasBoxTest, 20}}), 0, 0, 0});
+    w.lanes.push_back({counts_of({{Event::Ray, 1}, {Event::BlasNodeVisit, 4}, {Event::BlasBoxTest, 8}}), 0, 0, 1});
+    ProgramPrices prices;
+    const WavePrice nvidia = price_wave(w, m, prices);
+    CHECK(nvidia.shader == 1.0);
+    CHECK(nvidia.rt == 3.0 * 14 + 2.0 * 28);
+    m.execution.lockstep_events = {Event::BlasNodeVisit};
+    EffectiveCounts eff{};
+    ProgramPrices prices2;
+    const WavePrice amd = price_wave(w, m, prices2, &eff);
+    CHECK(amd.shader == 1.0 + 3.0 * 10);  // the slowest lane's loop, once
+    CHECK(amd.rt == 2.0 * 28);            // only the box tests in the accelerator
+    double linear = 0.0;
+    for (std::size_t e = 0; e < kEventCount; ++e) linear += eff[e] * m.cycles[e];
+    CHECK(linear == doctest::Approx(amd.total()));
+    CHECK(eff[static_cast<std::size_t>(Event::BlasNodeVisit)] == 10.0);
+}
+
+TEST_CASE("lockstep events: batched draw pricing equals each draw priced wave by wave (rdna3, rdna4)") {
+    const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
+    fs::create_directories(dir);
+    const nlohmann::json config = {
+        {"name", "lockstep"},
+        {"scene", {{"type", "bundle"}, {"count", 60}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
+        {"primitives", {{"kind", "capsule"}}},
+        {"methods", {"ref", "obb"}},
+        {"cost", {kHw + "rdna3.json", kHw + "rdna4.json"}},
+        {"memory", kHw + "memory-optix7.json"},
+        {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
+        {"output", {{"images", false}, {"arrays", false}}},
+        {"uncertainty", {{"draws", 8}, {"seed", 3}}}};
+    const RunConfig c = parse_run_config(config, (dir / "c.json").string());
+    RunContext ctx;
+    ctx.quiet = true;
+    ctx.threads = 1;
+    ctx.record_warps = true;
+    const RunResult r = run_simulation(c, config, ctx);
+    for (std::size_t p = 0; p < 2; ++p) {
+        const std::vector<CostModel> draws = draw_cost_models(r.costs[p], 8, 3);
+        for (const MethodRun& m : r.methods) {
+            CAPTURE(m.method);
+            CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles()).epsilon(1e-12));
+            for (std::size_t d = 0; d < draws.size(); ++d)
+                CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles()).epsilon(1e-12));
+        }
+    }
+}
