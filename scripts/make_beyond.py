@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
-"""Collects the report.json files of a cluster-size sweep into the Markdown
-tables of docs/beyond.md (section "cluster: the paper's future work").
+"""Collects report.json files into the Markdown tables of docs/beyond.md.
 
+usage: scripts/make_beyond.py hardware RUN_DIR > part1.md
+  Part I (the hardware after Turing): RUN_DIR is the output of
+  build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py).
 usage: scripts/make_beyond.py [--svg PLOT.svg] RUN_DIR [RUN_DIR ...] > tables.md
+  Part II (section "cluster: the paper's future work"):
 Each RUN_DIR is the output of
   build/simulate configs/runs/cluster_sweep.json --out RUN_DIR
 (or configs/runs/cluster_fur20m.json). Memory is repriced from the reported
@@ -27,8 +30,9 @@ def load_presets():
     out = {}
     for name in PRESETS:
         with open(os.path.join(ROOT, "configs", "hw", name + ".json")) as f:
-            b = json.load(f)["bytes"]
-        out[name] = {k: v["value"] for k, v in b.items()}
+            j = json.load(f)
+        out[name] = {k: v["value"] for k, v in j["bytes"].items()}
+        out[name]["instance_includes_tlas_nodes"] = j.get("instance_includes_tlas_nodes", {}).get("value", False)
     return out
 
 
@@ -47,11 +51,15 @@ def reports(directory):
 
 def total_bytes(method, preset):
     """Acceleration structures under `preset` plus the shared data."""
+    # As price_memory (sim/hardware/memory_model.cpp): a preset whose
+    # instance price includes the TLAS nodes does not count them again.
     s = method["structures"]
     node = preset["node_w%d" % s["width"]]
-    accel = (s["tlas_nodes"] + s["blas_nodes"]) * node + s["instances"] * preset["instance"] + \
+    tlas = 0 if preset["instance_includes_tlas_nodes"] and s["instances"] > 0 else s["tlas_nodes"]
+    accel = (tlas + s["blas_nodes"]) * node + s["instances"] * preset["instance"] + \
         s["custom_prims"] * preset["custom_prim"] + s["triangles"] * preset["triangle"] + \
-        s.get("blases", 0) * preset["blas"]
+        s.get("lss_prims", 0) * preset["lss_prim"] + s.get("oriented_children", 0) * preset["obb_child"] + \
+        s.get("leaf_obbs", 0) * preset["leaf_obb"] + s.get("blases", 0) * preset["blas"]
     return accel + method["memory_bytes"]["common"]
 
 
@@ -186,6 +194,13 @@ def pareto_svg(rs, path):
 
 def main():
     args = sys.argv[1:]
+    if args[:1] == ["hardware"]:
+        if len(args) != 2:
+            sys.exit(__doc__)
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import beyond_hardware
+        sys.stdout.write(beyond_hardware.report(args[1]))
+        return
     svg = None
     if len(args) >= 2 and args[0] == "--svg":
         svg, args = args[1], args[2:]

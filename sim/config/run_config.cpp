@@ -23,8 +23,9 @@ BuildOptions read_build(const JsonReader& r, BuildOptions o) {
 }
 
 BreakEvenAxis read_axis(const JsonReader& r) {
-    r.allow_only({"events", "min", "max"});
+    r.allow_only({"events", "min", "max", "scale"});
     BreakEvenAxis a;
+    a.scale = r.boolean("scale", false);
     const nlohmann::json* ev = r.has("events") ? &r.json()["events"] : nullptr;
     if (!ev || !ev->is_array() || ev->empty()) r.fail("events", "expected a non-empty list of event names");
     for (std::size_t i = 0; i < ev->size(); ++i) {
@@ -158,13 +159,24 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         for (std::size_t i = 0; i < list.size(); ++i) {
             const JsonReader b(list[i], file, "/break_even/" + std::to_string(i));
             if (!list[i].is_object()) b.fail("", "expected an object");
-            b.allow_only({"name", "preset", "x", "y", "cells"});
+            b.allow_only({"name", "preset", "x", "y", "cells", "methods"});
             BreakEvenSpec spec;
             spec.name = b.string("name", std::nullopt);
             spec.preset = b.string("preset", std::nullopt);
             spec.x = read_axis(b.child("x"));
             spec.y = read_axis(b.child("y"));
             spec.cells = static_cast<int>(b.integer("cells", 48, 2, 512));
+            if (const nlohmann::json* ms = b.has("methods") ? &b.json()["methods"] : nullptr) {
+                if (!ms->is_array() || ms->size() < 2) b.fail("methods", "expected a list of at least two of the run's methods");
+                for (std::size_t k = 0; k < ms->size(); ++k) {
+                    const std::string key = "methods/" + std::to_string(k);
+                    if (!(*ms)[k].is_string()) b.fail(key, "expected a method name, got " + describe((*ms)[k]));
+                    const std::string name = (*ms)[k].get<std::string>();
+                    if (std::find(c.methods.begin(), c.methods.end(), name) == c.methods.end())
+                        b.fail(key, "\"" + name + "\" is not one of the run's methods");
+                    spec.methods.push_back(name);
+                }
+            }
             c.break_even.push_back(std::move(spec));
         }
     }

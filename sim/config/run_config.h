@@ -33,12 +33,16 @@ struct UncertaintyOptions {
 struct BreakEvenAxis {
     std::vector<Event> events;  // all set to the swept value
     double min = 1.0, max = 100.0;
+    // The swept value multiplies each event's preset cost instead (a factor:
+    // the operation classes of a program keep their ratios).
+    bool scale = false;
 };
 struct BreakEvenSpec {
     std::string name;    // file name: break_even_<name>.png
     std::string preset;  // a cost preset's name, one of the run's
     BreakEvenAxis x, y;
     int cells = 48;      // per axis
+    std::vector<std::string> methods;  // the methods compared (empty: all the run's)
 };
 
 struct RunConfig {

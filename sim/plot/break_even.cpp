@@ -33,7 +33,7 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
         g.margin.size() != g.winner.size())
         throw std::invalid_argument("render_break_even: grid size mismatch");
     const int cp = std::max(1, o.cell_pixels), map_w = g.nx * cp, map_h = g.ny * cp;
-    const int left = 70, top = 40, legend_w = 190, bottom = 70;
+    const int left = 70, top = 40, legend_w = 190, bottom = 86;  // three caption lines
     Image img(left + map_w + 20 + legend_w, top + map_h + bottom, {255, 255, 255});
     draw_text(img, 10, 8, g.title, {{0, 0, 0}, 2});
     const double full = std::log(std::max(o.full_margin, 1.0001));
@@ -49,12 +49,29 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
             img.fill_rect(left + x * cp, top + (g.ny - 1 - y) * cp, cp, cp, c);
         }
     img.stroke_rect(left - 1, top - 1, map_w + 2, map_h + 2, {0, 0, 0});
-    // Axis ticks at the edges and the middle (log axes: geometric middle).
+    // Five ticks per axis, evenly spaced on the log axes, with tick marks.
     const TextStyle small{{0, 0, 0}, 1, TextAlign::Center};
-    for (int k = 0; k <= 2; ++k) {
-        const double xv = g.x_lo * std::pow(g.x_hi / g.x_lo, k / 2.0), yv = g.y_lo * std::pow(g.y_hi / g.y_lo, k / 2.0);
-        draw_text(img, left + map_w * k / 2, top + map_h + 6, number(xv), small);
-        draw_text(img, left - 6, top + map_h - map_h * k / 2 - 4, number(yv), {{0, 0, 0}, 1, TextAlign::Right});
+    constexpr int kTicks = 4;
+    for (int k = 0; k <= kTicks; ++k) {
+        const double f = static_cast<double>(k) / kTicks;
+        const double xv = g.x_lo * std::pow(g.x_hi / g.x_lo, f), yv = g.y_lo * std::pow(g.y_hi / g.y_lo, f);
+        const int px = left + map_w * k / kTicks, py = top + map_h - map_h * k / kTicks;
+        img.fill_rect(px, top + map_h + 1, 1, 4, {0, 0, 0});
+        img.fill_rect(left - 5, py, 4, 1, {0, 0, 0});
+        draw_text(img, px, top + map_h + 6, number(xv), small);
+        draw_text(img, left - 6, py - 4, number(yv), {{0, 0, 0}, 1, TextAlign::Right});
+    }
+    // The preset's own point: a black cross with a white halo, and its label.
+    const auto to_px = [](double v, double lo, double hi, int span) {
+        return static_cast<int>(std::lround(span * std::log(v / lo) / std::log(hi / lo)));
+    };
+    if (g.has_mark && g.mark_x >= g.x_lo && g.mark_x <= g.x_hi && g.mark_y >= g.y_lo && g.mark_y <= g.y_hi) {
+        const int mx = left + to_px(g.mark_x, g.x_lo, g.x_hi, map_w), my = top + map_h - to_px(g.mark_y, g.y_lo, g.y_hi, map_h);
+        img.fill_rect(mx - 7, my - 2, 15, 5, {255, 255, 255});
+        img.fill_rect(mx - 2, my - 7, 5, 15, {255, 255, 255});
+        img.fill_rect(mx - 6, my - 1, 13, 3, {0, 0, 0});
+        img.fill_rect(mx - 1, my - 6, 3, 13, {0, 0, 0});
+        draw_text(img, mx + 9, my - 12, g.mark_label, {{0, 0, 0}, 1, TextAlign::Left});
     }
     draw_text(img, left + map_w / 2, top + map_h + 22, g.x_label + " (log)", small);
     draw_text(img, 6, top - 14, g.y_label + " (log)", {{0, 0, 0}, 1, TextAlign::Left});
@@ -74,6 +91,11 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
     const int ly = top + 44 + static_cast<int>(g.methods.size()) * 18;
     img.fill_rect(lx, ly, 14, 12, {128, 128, 128});
     draw_text(img, lx + 36, ly + 2, "none runs", {});
+    if (g.has_mark) {
+        img.fill_rect(lx + 1, ly + 23, 13, 3, {0, 0, 0});
+        img.fill_rect(lx + 6, ly + 18, 3, 13, {0, 0, 0});
+        draw_text(img, lx + 36, ly + 20, "the preset's costs", {});
+    }
     if (o.scale <= 1) return img;
     Image big(img.width * o.scale, img.height * o.scale, {255, 255, 255});
     for (int y = 0; y < img.height; ++y)

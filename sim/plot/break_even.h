@@ -18,6 +18,10 @@ struct BreakEvenGrid {
     std::vector<std::string> methods;   // winner index -> name
     double x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;  // axis values at the grid's edges (log axes)
     std::string x_label, y_label, title, caption;
+    // A point to mark (the preset's own costs), in axis values; drawn when set.
+    bool has_mark = false;
+    double mark_x = 0, mark_y = 0;
+    std::string mark_label;
 };
 
 struct BreakEvenOptions {

@@ -4,6 +4,7 @@
 #include "sim/plot/break_even.h"
 #include "sim/report/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -14,8 +15,8 @@ namespace {
 
 std::string axis_label(const BreakEvenAxis& a) {
     std::string s;
-    for (const Event e : a.events) s += (s.empty() ? "" : " = ") + std::string(event_name(e));
-    return s + " [cycles]";
+    for (const Event e : a.events) s += (s.empty() ? "" : a.scale ? ", " : " = ") + std::string(event_name(e));
+    return a.scale ? "x factor on " + s + " (1 = the preset)" : s + " [cycles]";
 }
 
 double axis_value(const BreakEvenAxis& a, int i, int n) {
@@ -23,6 +24,17 @@ double axis_value(const BreakEvenAxis& a, int i, int n) {
 }
 
 }  // namespace
+
+std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel& preset, bool& warp) {
+    std::array<double, kEventCount> c{};
+    warp = preset.execution.warp() && m.frame.warp_trace.waves() > 0;
+    if (warp) {
+        (void)m.frame.warp_trace.price(preset, &c);
+    } else {
+        for (std::size_t i = 0; i < kEventCount; ++i) c[i] = static_cast<double>(m.frame.totals.n[i]);
+    }
+    return c;
+}
 
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir) {
     std::vector<std::string> written;
@@ -48,25 +60,53 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
         const std::string label = run.sweep_label.empty() ? run.config.name : run.sweep_label;
         g.title = "fastest method: " + spec.name;
         g.caption = label + "\nother costs: " + base->name + "; a method the preset cannot run is left out";
-        // Every method of the run keeps its colour in every map; those that
+        // Every method of the map keeps its colour in every map; those that
         // cannot run here are listed as n/a and never win.
         std::vector<const MethodRun*> methods;
         for (const MethodRun& m : run.methods) {
+            if (!spec.methods.empty() && std::find(spec.methods.begin(), spec.methods.end(), m.method) == spec.methods.end())
+                continue;
             const MethodEntry* e = find_method(m.method);
             const bool runs = m.runnable && e && base->missing_feature(e->info.needs).empty();
             methods.push_back(runs ? &m : nullptr);
             g.methods.push_back(runs ? m.method : m.method + " (n/a)");
         }
+        // Each method's cycles as a linear function of the costs. Under a warp
+        // preset, the effective counts of its recorded waves at the preset's
+        // own costs: exact at the mark, first order around it (the lanes and
+        // calls that win each max are the mark's). Else the per-ray counts.
+        // (A map mixes no models: if one method's waves are missing, all use totals.)
+        bool warp = base->execution.warp();
+        for (const MethodRun* m : methods) warp = warp && (!m || m->frame.warp_trace.waves() > 0);
+        std::vector<EffectiveCounts> linear(methods.size(), EffectiveCounts{});
+        for (std::size_t k = 0; k < methods.size(); ++k) {
+            if (!methods[k]) continue;
+            bool w = warp;
+            linear[k] = warp ? break_even_counts(*methods[k], *base, w) : break_even_counts(*methods[k], CostModel{}, w);
+        }
+        g.caption += warp ? "\ncycles: warp model, first order around the mark (exact there)" : "\ncycles: per-ray sum of every ray's events";
+        g.has_mark = true;
+        g.mark_x = spec.x.scale ? 1.0 : (*base)[spec.x.events.front()];
+        g.mark_y = spec.y.scale ? 1.0 : (*base)[spec.y.events.front()];
+        g.mark_label = base->name;
+        // An axis sets its events' costs; a cost made of others (sum_of)
+        // follows its terms, unless an axis sets it itself.
         CostModel model = *base;
+        std::erase_if(model.composed, [&](const ComposedCost& c) {
+            return std::count(spec.x.events.begin(), spec.x.events.end(), c.target) +
+                   std::count(spec.y.events.begin(), spec.y.events.end(), c.target);
+        });
         for (int iy = 0; iy < g.ny; ++iy) {
-            for (const Event e : spec.y.events) model[e] = axis_value(spec.y, iy, g.ny);
+            for (const Event e : spec.y.events) model[e] = axis_value(spec.y, iy, g.ny) * (spec.y.scale ? (*base)[e] : 1.0);
             for (int ix = 0; ix < g.nx; ++ix) {
-                for (const Event e : spec.x.events) model[e] = axis_value(spec.x, ix, g.nx);
+                for (const Event e : spec.x.events) model[e] = axis_value(spec.x, ix, g.nx) * (spec.x.scale ? (*base)[e] : 1.0);
+                model.settle();
                 double best = std::numeric_limits<double>::infinity(), second = best;
                 int winner = -1;
                 for (std::size_t k = 0; k < methods.size(); ++k) {
                     if (!methods[k]) continue;
-                    const double c = price(methods[k]->frame.totals, model).total_cycles;
+                    double c = 0.0;
+                    for (std::size_t i = 0; i < kEventCount; ++i) c += linear[k][i] * model.cycles[i];
                     if (c < best) second = best, best = c, winner = static_cast<int>(k);
                     else if (c < second) second = c;
                 }

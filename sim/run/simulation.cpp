@@ -224,7 +224,8 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
         fo.warp = r.warp_grouping ? &*r.warp_grouping : nullptr;
         fo.warp_presets = warp_presets;
         fo.warp_draws = draws.warp_sets;
-        fo.record_warps = ctx.record_warps && r.warp_grouping.has_value();
+        // Break-even maps re-price the recorded waves (their effective counts).
+        fo.record_warps = (ctx.record_warps || !c.break_even.empty()) && r.warp_grouping.has_value();
         fo.band = ctx.band;
         fo.bands = ctx.bands;
         m.frame = ctx.frame_source ? ctx.frame_source(name) : built->run(geometry, frame, c.trace, fo);

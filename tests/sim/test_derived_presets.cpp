@@ -9,6 +9,7 @@
 #include "sim/hardware/presets/derived_preset.h"
 #include "sim/hardware/warp_pricing.h"
 #include "sim/plot/plot_svg.h"
+#include "sim/report/report.h"
 #include "sim/run/simulation.h"
 #include "sim/util/json_file.h"
 
@@ -187,7 +188,7 @@ TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest l
     CHECK(eff[static_cast<std::size_t>(Event::BlasNodeVisit)] == 10.0);
 }
 
-TEST_CASE("lockstep events: batched draw pricing equals each draw priced wave by wave (rdna3, rdna4)") {
+TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wave pricing (rdna3, rdna4)") {
     const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
     fs::create_directories(dir);
     const nlohmann::json config = {
@@ -211,6 +212,13 @@ TEST_CASE("lockstep events: batched draw pricing equals each draw priced wave by
         for (const MethodRun& m : r.methods) {
             CAPTURE(m.method);
             CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles()).epsilon(1e-12));
+            // Break-even maps price a method linearly around the preset: exact at it.
+            bool warp = false;
+            const auto linear = break_even_counts(m, r.costs[p], warp);
+            CHECK(warp);
+            double at_preset = 0.0;
+            for (std::size_t i = 0; i < kEventCount; ++i) at_preset += linear[i] * r.costs[p].cycles[i];
+            CHECK(at_preset == doctest::Approx(m.priced[p].total_cycles).epsilon(1e-12));
             for (std::size_t d = 0; d < draws.size(); ++d)
                 CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles()).epsilon(1e-12));
         }
