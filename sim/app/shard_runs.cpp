@@ -42,7 +42,7 @@ int run_shard(const CliOptions& cli) {
     plan.command_line = cli.command_line;
     const std::string out = cli.out ? *cli.out
                                     : "out/" + plan.parsed.front().name + "-shard" + std::to_string(spec.index);
-    prepare_output_dir(out, cli.limits.force);
+    OutputDir owned(out, cli.limits.force);  // locked until the shard ends
     make_dir((fs::path(out) / "frames").string());
     ShardManifest manifest;
     manifest.build = build_id();
@@ -77,16 +77,18 @@ int run_shard(const CliOptions& cli) {
         manifest.units.push_back(std::move(entry));
     }
     // Last, and atomically: shard.json marks a finished shard (--resume).
-    const std::string partial = (fs::path(out) / "shard.json.partial").string();
-    write_text_file(partial, manifest_json(manifest).dump(2) + "\n");
-    fs::rename(partial, fs::path(out) / "shard.json");
+    write_file_atomically((fs::path(out) / "shard.json").string(), manifest_json(manifest).dump(2) + "\n");
+    owned.finish();
     if (!cli.quiet) std::cerr << "shard " << spec.index << "/" << spec.count << " done: " << out << "/shard.json\n";
     return 0;
 }
 
 int run_merge(const CliOptions& cli) {
     std::vector<ShardManifest> manifests;
-    for (const std::string& dir : cli.merge_dirs) manifests.push_back(read_manifest(dir));
+    for (const std::string& dir : cli.merge_dirs) {
+        require_finished_output(dir);  // a killed or failed shard
+        manifests.push_back(read_manifest(dir));
+    }
     manifests = check_shard_set(std::move(manifests));
     const ShardManifest& first = manifests.front();
     if (first.build != build_id())
@@ -140,9 +142,11 @@ int run_merge(const CliOptions& cli) {
         }, what);
     };
     const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
-    prepare_output_dir(out, cli.limits.force);
+    OutputDir owned(out, cli.limits.force);  // locked until the merge ends
     if (!cli.quiet) std::cerr << "merging " << manifests.size() << " shards -> " << out << "\n";
-    return run_planned(plan, cli, out, &frames);
+    const int status = run_planned(plan, cli, out, &frames);
+    owned.finish();
+    return status;
 }
 
 int print_shard_estimates(const CliOptions& cli) {

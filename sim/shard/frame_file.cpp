@@ -2,6 +2,7 @@
 
 #include "core/input_error.h"
 #include "scenes/loaders/file_bytes.h"
+#include "sim/util/json_file.h"
 
 #include <cstdio>
 #include <cstring>
@@ -17,18 +18,9 @@ constexpr std::uint32_t kFormat = 1;
 
 class Writer {
 public:
-    explicit Writer(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "wb")) {
-        if (!f_) throw InputError(path + ": cannot open for writing");
-    }
-    ~Writer() {
-        if (f_) std::fclose(f_);
-    }
-    Writer(const Writer&) = delete;
-    Writer& operator=(const Writer&) = delete;
+    explicit Writer(const std::string& path) : file_(path) {}
 
-    void bytes(const void* p, std::size_t n) {
-        if (n && std::fwrite(p, 1, n, f_) != n) throw InputError(path_ + ": write failed (disk full?)");
-    }
+    void bytes(const void* p, std::size_t n) { file_.write(p, n); }
     template <class T>
     void put(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -40,15 +32,10 @@ public:
         put<std::uint64_t>(end - begin);
         if (end > begin) bytes(v.data() + begin, (end - begin) * sizeof(T));
     }
-    void close() {
-        const int rc = std::fclose(f_);
-        f_ = nullptr;
-        if (rc != 0) throw InputError(path_ + ": write failed (disk full?)");
-    }
+    void close() { file_.commit(); }
 
 private:
-    std::string path_;
-    std::FILE* f_;
+    OutputFile file_;  // under a temporary name until close()
 };
 
 class Reader {
