@@ -85,3 +85,25 @@ def test_bad_preset_and_price_inputs():
         rtcsim.price({"teleport": 1}, "turing-guess")
     with pytest.raises(ValueError, match="threads"):
         rtcsim.run(TINY, threads=-1, progress=False)
+
+
+def test_deep_nesting_is_refused_at_parse_time(simulate, tmp_path):
+    # 100,000 nested arrays (200 KB): the CLI's message, not a stack overflow.
+    config = tmp_path / "deep.json"
+    config.write_text('{"name": "deep",\n"scene": ' + "[" * 100000 + "]" * 100000 + "}\n")
+    message = f"{config}: line 2: JSON nested deeper than 128 levels"
+    cli = simulate(config, "--quiet", "--out", tmp_path / "out")
+    assert cli.returncode == 2 and cli.stderr.strip() == message
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(str(config), progress=False)
+    assert str(err.value) == message
+    # A report.json as deep: rtcsim.InputError, not a RecursionError.
+    (tmp_path / "report.json").write_text("[" * 100000 + "]" * 100000)
+    with pytest.raises(rtcsim.InputError, match="report.json: invalid JSON"):
+        rtcsim.load_report(tmp_path / "report.json")
+
+
+def test_a_cut_report_is_an_input_error(tmp_path):
+    (tmp_path / "report.json").write_text('{"name": "cut", "meth')
+    with pytest.raises(rtcsim.InputError, match=r"report.json: line 1: invalid JSON"):
+        rtcsim.load_report(tmp_path)

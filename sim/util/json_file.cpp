@@ -44,7 +44,30 @@ std::string read_text_file(const std::string& path) {
     return ss.str();
 }
 
+void check_json_depth(std::string_view text, const std::string& file) {
+    int depth = 0;
+    bool in_string = false;
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') ++line;
+        if (in_string) {
+            if (c == '\\') ++i;  // the escaped character cannot end the string
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(file + ": line " + std::to_string(line) + ": JSON nested deeper than " +
+                                 std::to_string(kMaxJsonDepth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+    check_json_depth(text, file);
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {

@@ -11,7 +11,14 @@
 namespace rtc {
 
 [[nodiscard]] std::string read_text_file(const std::string& path);
+// Refuses (InputError naming the file and line) JSON nested deeper than
+// kMaxJsonDepth, before nlohmann builds it: copying or destroying a deep
+// value recurses once per level and would overflow the stack.
 [[nodiscard]] nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+
+// Configs and presets nest fewer than 10 levels.
+inline constexpr int kMaxJsonDepth = 128;
+void check_json_depth(std::string_view text, const std::string& file);
 
 // A file written under a temporary name (`path` + ".partial") and renamed to
 // `path` by commit(): a reader never finds a cut file under the real name.
