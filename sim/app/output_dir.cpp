@@ -40,6 +40,17 @@ void write_mark(const std::string& dir, const char* state) {
 
 }  // namespace
 
+std::string default_output_dir(const std::string& name, const std::string& suffix, const std::string& file) {
+    bool bad = name.empty() || name == "." || name == ".." || name.size() > 200;
+    for (const char c : name)
+        bad = bad || c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    if (bad)
+        throw InputError(file + ": /name: " + nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                         " cannot name the output directory out/<name> (it must be a file name: not empty, . or "
+                         ".., without / or \\ or control characters, at most 200 bytes): rename the run or pass --out");
+    return "out/" + name + suffix;
+}
+
 void make_dir(const std::string& dir) {
     std::error_code ec;
     fs::create_directories(dir, ec);

@@ -49,6 +49,13 @@ private:
 // mark does not say the run completed.
 void require_finished_output(const std::string& dir);
 
+// `out/<name><suffix>`, the output directory of a run without --out. The
+// config's `name` becomes a path component: one with `/`, `\`, a control
+// character (NUL included), or that is empty, `.` or `..`, is refused with an
+// InputError naming `file` and /name.
+[[nodiscard]] std::string default_output_dir(const std::string& name, const std::string& suffix,
+                                             const std::string& file);
+
 // Creates `dir` (a sweep point's directory inside a prepared one).
 void make_dir(const std::string& dir);
 

@@ -111,7 +111,7 @@ int run_all(const CliOptions& cli) {
     plan.command_line = cli.command_line;
     // Before any work: a calibrate output that would overwrite a file.
     if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
-    const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
+    const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", cli.config);
     OutputDir owned(out, cli.limits.force);  // locked until the run ends
     const int status = run_planned(plan, cli, out, nullptr);
     owned.finish();

@@ -41,7 +41,8 @@ int run_shard(const CliOptions& cli) {
     RunPlan plan = plan_config_text(cli.config, text, cli.sets, cli.limits);
     plan.command_line = cli.command_line;
     const std::string out = cli.out ? *cli.out
-                                    : "out/" + plan.parsed.front().name + "-shard" + std::to_string(spec.index);
+                                    : default_output_dir(plan.parsed.front().name, "-shard" + std::to_string(spec.index),
+                                                         cli.config);
     OutputDir owned(out, cli.limits.force);  // locked until the shard ends
     make_dir((fs::path(out) / "frames").string());
     ShardManifest manifest;
@@ -141,7 +142,7 @@ int run_merge(const CliOptions& cli) {
             return f;
         }, what);
     };
-    const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
+    const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", first.config_file);
     OutputDir owned(out, cli.limits.force);  // locked until the merge ends
     if (!cli.quiet) std::cerr << "merging " << manifests.size() << " shards -> " << out << "\n";
     const int status = run_planned(plan, cli, out, &frames);
