@@ -25,8 +25,10 @@ nlohmann::json manifest_json(const ShardManifest& m) {
 
 ShardManifest read_manifest(const std::string& dir) {
     const std::string file = (std::filesystem::path(dir) / "shard.json").string();
-    if (!std::filesystem::exists(file))
-        throw InputError(file + ": not found (the shard did not finish, or " + dir + " is not a shard directory)");
+    std::error_code ec;  // a symlink loop or an over-long name: an InputError, not a filesystem_error
+    if (!std::filesystem::exists(file, ec))
+        throw InputError(file + (ec ? ": cannot access (" + ec.message() + ")"
+                                    : ": not found (the shard did not finish, or " + dir + " is not a shard directory)"));
     const nlohmann::json j = parse_json_text(read_text_file(file), file);
     const JsonReader r(j, file);
     r.allow_only({"format", "build", "shard", "shards", "config_file", "points", "units", "sets", "config_text",
