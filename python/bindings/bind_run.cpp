@@ -9,6 +9,7 @@
 #include "sim/plot/plot_svg.h"  // write_text_file
 #include "sim/util/json_file.h"
 
+#include <cmath>
 #include <filesystem>
 
 namespace rtc::py_bind {
@@ -22,11 +23,18 @@ struct PlanHandle {
 // The CLI's --max-rays, --max-memory, --force (and the sweep size ceiling).
 WorkLimits limits_from(const py::dict& d) {
     WorkLimits l;
+    // As the CLI's --max-rays and --max-memory: a finite number >= 1.
+    const auto ceiling = [](const std::string& k, const py::handle& value) {
+        const double v = value.cast<double>();
+        if (!(v >= 1.0) || !std::isfinite(v))
+            throw InputError("limits: " + k + ": expected a finite number >= 1, got " + std::string(py::str(py::repr(value))));
+        return v;
+    };
     for (const auto& [key, value] : d) {
         const std::string k = py::str(key);
-        if (k == "max_rays") l.max_rays = value.cast<double>();
-        else if (k == "max_memory") l.max_memory = value.cast<double>();
-        else if (k == "max_sweep_points") l.max_sweep_points = value.cast<double>();
+        if (k == "max_rays") l.max_rays = ceiling(k, value);
+        else if (k == "max_memory") l.max_memory = ceiling(k, value);
+        else if (k == "max_sweep_points") l.max_sweep_points = ceiling(k, value);
         else if (k == "force") l.force = value.cast<bool>();
         else throw std::invalid_argument("limits: unknown key " + k + " (max_rays, max_memory, max_sweep_points, force)");
     }

@@ -107,3 +107,17 @@ def test_a_cut_report_is_an_input_error(tmp_path):
     (tmp_path / "report.json").write_text('{"name": "cut", "meth')
     with pytest.raises(rtcsim.InputError, match=r"report.json: line 1: invalid JSON"):
         rtcsim.load_report(tmp_path)
+
+
+def test_python_arguments_are_checked_as_the_cli_checks_its_options(tmp_path):
+    with pytest.raises(ValueError, match="threads: expected 0 .* up to 1024, got 1000000000000"):
+        rtcsim.run(TINY, threads=10**12, progress=False)
+    with pytest.raises(rtcsim.InputError, match="limits: max_memory: expected a finite number >= 1, got nan"):
+        rtcsim.plan(TINY, limits={"max_memory": float("nan")})
+    with pytest.raises(rtcsim.InputError, match="limits: max_rays: expected a finite number >= 1, got -1"):
+        rtcsim.plan(TINY, limits={"max_rays": -1})
+    # An output directory that cannot be made: rtcsim.InputError naming it.
+    (tmp_path / "file").write_text("not a directory")
+    out = tmp_path / "file" / "out"
+    with pytest.raises(rtcsim.InputError, match=f"{out}: cannot create output directory"):
+        rtcsim.run(TINY, progress=False, out=out, sets={"workload.width": 8, "workload.height": 8})

@@ -112,6 +112,25 @@ TEST_CASE("shard plan: every point and band runs in exactly one shard") {
             for (const auto& [p, b] : bands) CHECK(b.size() == band_count[p]);
             CHECK(units == std::max<std::size_t>(points, shards));
         }
+    // units_of_shard (computed directly, not by listing every unit) is unit
+    // index, index + N, ... of shard_units.
+    for (const std::size_t points : {1u, 2u, 3u, 5u, 8u, 13u})
+        for (const std::uint32_t shards : {1u, 2u, 3u, 7u, 8u, 20u, 31u}) {
+            const std::vector<ShardUnit> all = shard_units(points, shards);
+            for (std::uint32_t i = 0; i < shards; ++i) {
+                CAPTURE(points);
+                CAPTURE(shards);
+                CAPTURE(i);
+                const std::vector<ShardUnit> mine = units_of_shard(points, {i, shards});
+                std::size_t k = 0;
+                for (std::size_t u = i; u < all.size(); u += shards, ++k) {
+                    REQUIRE(k < mine.size());
+                    CHECK((mine[k].point == all[u].point && mine[k].band == all[u].band &&
+                           mine[k].bands == all[u].bands));
+                }
+                CHECK(k == mine.size());
+            }
+        }
     // Bands of tasks tile the frame, also with more bands than tasks.
     for (const std::size_t tasks : {0u, 1u, 5u, 12u, 800u})
         for (const std::uint32_t n : {1u, 3u, 7u}) {
