@@ -3,11 +3,13 @@
 // released, and the result kept in C++ for NumPy views.
 #include "common.h"
 
+#include "sim/app/output_dir.h"
 #include "sim/app/run_all.h"
 #include "sim/report/report.h"
 #include "sim/plot/plot_svg.h"  // write_text_file
 #include "sim/util/json_file.h"
 
+#include <cmath>
 #include <filesystem>
 
 namespace rtc::py_bind {
@@ -21,11 +23,18 @@ struct PlanHandle {
 // The CLI's --max-rays, --max-memory, --force (and the sweep size ceiling).
 WorkLimits limits_from(const py::dict& d) {
     WorkLimits l;
+    // As the CLI's --max-rays and --max-memory: a finite number >= 1.
+    const auto ceiling = [](const std::string& k, const py::handle& value) {
+        const double v = value.cast<double>();
+        if (!(v >= 1.0) || !std::isfinite(v))
+            throw InputError("limits: " + k + ": expected a finite number >= 1, got " + std::string(py::str(py::repr(value))));
+        return v;
+    };
     for (const auto& [key, value] : d) {
         const std::string k = py::str(key);
-        if (k == "max_rays") l.max_rays = value.cast<double>();
-        else if (k == "max_memory") l.max_memory = value.cast<double>();
-        else if (k == "max_sweep_points") l.max_sweep_points = value.cast<double>();
+        if (k == "max_rays") l.max_rays = ceiling(k, value);
+        else if (k == "max_memory") l.max_memory = ceiling(k, value);
+        else if (k == "max_sweep_points") l.max_sweep_points = ceiling(k, value);
         else if (k == "force") l.force = value.cast<bool>();
         else throw std::invalid_argument("limits: unknown key " + k + " (max_rays, max_memory, max_sweep_points, force)");
     }
@@ -41,11 +50,12 @@ PlanHandle make_plan(const std::string& text, const std::string& file, const std
 // The outputs the CLI writes for one run: report.json and, unless the config
 // turns them off, the render, heat maps, ratio maps and .npy arrays.
 void write_outputs(const RunResult& r, const std::string& dir) {
-    std::filesystem::create_directories(dir);
-    write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
+    make_dir(dir);  // an InputError naming it, not a filesystem_error
     if (r.config.output.images) write_images(r, dir);
     if (r.config.output.arrays) (void)write_arrays(r, dir);
     (void)write_break_even_maps(r, dir);
+    // Last: a report.json beside cut arrays is never left behind.
+    write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
 }
 
 RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, bool progress,
@@ -60,7 +70,7 @@ RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, b
     auto run = std::make_shared<RunResult>();
     {
         py::gil_scoped_release release;  // tracing runs on `threads` cores without Python
-        if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
+        if (!out_dir.empty()) make_dir(out_dir);
         *run = run_point(*h.plan, i, ctx);
         if (!out_dir.empty()) write_outputs(*run, out_dir);
     }

@@ -54,8 +54,8 @@ def plan(config, sets=None, base=None, limits=None):
 def _threads(threads):
     if threads is None:
         return 0
-    if int(threads) < 0:
-        raise ValueError(f"threads: expected a positive number (or None: all cores), got {threads}")
+    if not 0 <= int(threads) <= 1024:  # the CLI's --threads range
+        raise ValueError(f"threads: expected 0 (all cores) or a positive integer up to 1024, got {threads}")
     return int(threads)
 
 

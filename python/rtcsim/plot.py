@@ -372,9 +372,14 @@ def main(argv=None):
     parser.add_argument("--preset", help="cost preset name (default: each run's primary)")
     parser.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
     args = parser.parse_args(argv)
+    from ._rtcsim import InputError
     reports = []
-    for path in args.reports:
-        reports += load_reports(path) if os.path.isdir(path) else [load_report(path)]
+    try:
+        for path in args.reports:
+            reports += load_reports(path) if os.path.isdir(path) else [load_report(path)]
+    except InputError as e:  # a cut report.json, an unfinished run: one line, exit 2 as simulate
+        print(f"{parser.prog}: {e}", file=sys.stderr)
+        return 2
     if not reports:
         parser.error("no report.json found")
     os.makedirs(args.out, exist_ok=True)

@@ -161,13 +161,48 @@ class Report:
         return f"<Report {self.label!r}: {', '.join(self.method_names)}>"
 
 
+_MARK = ".rtcsim-output"
+
+
+def require_finished(directory):
+    """Raises InputError when `directory` (or, for a sweep point, the sweep's
+    directory above it) is a simulate output directory whose run did not
+    finish: its mark, .rtcsim-output, does not say `state: complete` (the run
+    failed, was killed, or is still running). A report outside one (a copy)
+    is not checked. simulate merge checks the same (sim/app/output_dir.h)."""
+    from ._rtcsim import InputError
+    directory = os.path.abspath(directory)
+    for d in (directory, os.path.dirname(directory)):
+        mark = os.path.join(d, _MARK)
+        if not os.path.isfile(mark):
+            continue
+        with open(mark, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+        if "state: complete\n" in text or (text and "state: " not in text):  # an older simulate's mark: no state
+            return
+        raise InputError(f"{d}: an unfinished simulate run ({_MARK} does not say complete: it failed, was killed, "
+                         "or is still running)")
+
+
+def _read_json(path):
+    from ._rtcsim import InputError
+    with open(path, "rb") as f:
+        text = f.read()
+    try:
+        return json.loads(text)
+    except (ValueError, RecursionError) as e:
+        where = f"line {e.lineno}: " if hasattr(e, "lineno") else ""
+        raise InputError(f"{path}: {where}invalid JSON ({getattr(e, 'msg', e)})") from None
+
+
 def load_report(path):
-    """A report.json file, or the report.json inside a directory."""
+    """A report.json file, or the report.json inside a directory. Raises
+    rtcsim.InputError for a cut file or an unfinished run's directory."""
     path = os.fspath(path)
     if os.path.isdir(path):
         path = os.path.join(path, "report.json")
-    with open(path) as f:
-        return Report(json.load(f), path)
+    require_finished(os.path.dirname(path) or ".")
+    return Report(_read_json(path), path)
 
 
 def load_reports(directory):
@@ -175,10 +210,10 @@ def load_reports(directory):
     sweep's combined report with every point), else the sweep points'
     `<index>_<label>/report.json` in index order."""
     directory = os.fspath(directory)
+    require_finished(directory)
     single = os.path.join(directory, "report.json")
     if os.path.isfile(single):
-        with open(single) as f:
-            data = json.load(f)
+        data = _read_json(single)
         if "points" not in data:
             return [Report(data, single)]
         # A sweep's combined report.json: its points' reports, in sweep order.

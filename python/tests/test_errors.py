@@ -85,3 +85,39 @@ def test_bad_preset_and_price_inputs():
         rtcsim.price({"teleport": 1}, "turing-per-ray-guess")
     with pytest.raises(ValueError, match="threads"):
         rtcsim.run(TINY, threads=-1, progress=False)
+
+
+def test_deep_nesting_is_refused_at_parse_time(simulate, tmp_path):
+    # 100,000 nested arrays (200 KB): the CLI's message, not a stack overflow.
+    config = tmp_path / "deep.json"
+    config.write_text('{"name": "deep",\n"scene": ' + "[" * 100000 + "]" * 100000 + "}\n")
+    message = f"{config}: line 2: JSON nested deeper than 128 levels"
+    cli = simulate(config, "--quiet", "--out", tmp_path / "out")
+    assert cli.returncode == 2 and cli.stderr.strip() == message
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(str(config), progress=False)
+    assert str(err.value) == message
+    # A report.json as deep: rtcsim.InputError, not a RecursionError.
+    (tmp_path / "report.json").write_text("[" * 100000 + "]" * 100000)
+    with pytest.raises(rtcsim.InputError, match="report.json: invalid JSON"):
+        rtcsim.load_report(tmp_path / "report.json")
+
+
+def test_a_cut_report_is_an_input_error(tmp_path):
+    (tmp_path / "report.json").write_text('{"name": "cut", "meth')
+    with pytest.raises(rtcsim.InputError, match=r"report.json: line 1: invalid JSON"):
+        rtcsim.load_report(tmp_path)
+
+
+def test_python_arguments_are_checked_as_the_cli_checks_its_options(tmp_path):
+    with pytest.raises(ValueError, match="threads: expected 0 .* up to 1024, got 1000000000000"):
+        rtcsim.run(TINY, threads=10**12, progress=False)
+    with pytest.raises(rtcsim.InputError, match="limits: max_memory: expected a finite number >= 1, got nan"):
+        rtcsim.plan(TINY, limits={"max_memory": float("nan")})
+    with pytest.raises(rtcsim.InputError, match="limits: max_rays: expected a finite number >= 1, got -1"):
+        rtcsim.plan(TINY, limits={"max_rays": -1})
+    # An output directory that cannot be made: rtcsim.InputError naming it.
+    (tmp_path / "file").write_text("not a directory")
+    out = tmp_path / "file" / "out"
+    with pytest.raises(rtcsim.InputError, match=f"{out}: cannot create output directory"):
+        rtcsim.run(TINY, progress=False, out=out, sets={"workload.width": 8, "workload.height": 8})

@@ -111,9 +111,11 @@ int run_all(const CliOptions& cli) {
     plan.command_line = cli.command_line;
     // Before any work: a calibrate output that would overwrite a file.
     if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
-    const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
-    prepare_output_dir(out, cli.limits.force);
-    return run_planned(plan, cli, out, nullptr);
+    const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", cli.config);
+    OutputDir owned(out, cli.limits.force);  // locked until the run ends
+    const int status = run_planned(plan, cli, out, nullptr);
+    owned.finish();
+    return status;
 }
 
 int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& out, const PointFrames* frames) {
@@ -152,7 +154,6 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         ctx.out_dir = dir;
         if (frames) ctx.frame_source = [frames, i](const std::string& method) { return (*frames)(i, method); };
         RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
-        write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         {
             // The arrays (140 MB on the head frame, mostly the kernel's copy
             // into the page cache) are written while the pictures are
@@ -166,6 +167,8 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
             if (arrays.valid()) arrays.get();
         }
         (void)write_break_even_maps(r, dir);
+        // Last of the point's files (the directory's mark says when the run is complete).
+        write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
         traced.reset();
         // (Ray and hit files are written while tracing: such points trace.)
         if (i + 1 < points.size() && same_trace(points[i].config, points[i + 1].config) &&

@@ -9,6 +9,7 @@
 #include "sim/util/json_file.h"
 #include "sim/util/version.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -41,8 +42,9 @@ int run_shard(const CliOptions& cli) {
     RunPlan plan = plan_config_text(cli.config, text, cli.sets, cli.limits);
     plan.command_line = cli.command_line;
     const std::string out = cli.out ? *cli.out
-                                    : "out/" + plan.parsed.front().name + "-shard" + std::to_string(spec.index);
-    prepare_output_dir(out, cli.limits.force);
+                                    : default_output_dir(plan.parsed.front().name, "-shard" + std::to_string(spec.index),
+                                                         cli.config);
+    OutputDir owned(out, cli.limits.force);  // locked until the shard ends
     make_dir((fs::path(out) / "frames").string());
     ShardManifest manifest;
     manifest.build = build_id();
@@ -51,6 +53,7 @@ int run_shard(const CliOptions& cli) {
     manifest.config_text = text;
     manifest.sets = cli.sets;
     manifest.points = plan.points.size();
+    manifest.config_hash = config_hash(plan.config.dump());
     const std::vector<ShardUnit> units = units_of_shard(plan.points.size(), spec);
     if (!cli.quiet)
         std::cerr << "shard " << spec.index << "/" << spec.count << " of " << cli.config << ": " << units.size()
@@ -71,22 +74,25 @@ int run_shard(const CliOptions& cli) {
             if (!m.runnable) continue;
             const std::string file = "frames/" + std::to_string(u.point) + "_" + std::to_string(u.band) + "_" +
                                      m.method + ".bin";
-            write_frame_file((fs::path(out) / file).string(), m.frame);
+            write_frame_file((fs::path(out) / file).string(), m.frame,
+                             frame_identity(plan.points[u.point].config.dump(), m.method, u.point, u.band, u.bands));
             entry.frames[m.method] = file;
         }
         manifest.units.push_back(std::move(entry));
     }
     // Last, and atomically: shard.json marks a finished shard (--resume).
-    const std::string partial = (fs::path(out) / "shard.json.partial").string();
-    write_text_file(partial, manifest_json(manifest).dump(2) + "\n");
-    fs::rename(partial, fs::path(out) / "shard.json");
+    write_file_atomically((fs::path(out) / "shard.json").string(), manifest_json(manifest).dump(2) + "\n");
+    owned.finish();
     if (!cli.quiet) std::cerr << "shard " << spec.index << "/" << spec.count << " done: " << out << "/shard.json\n";
     return 0;
 }
 
 int run_merge(const CliOptions& cli) {
     std::vector<ShardManifest> manifests;
-    for (const std::string& dir : cli.merge_dirs) manifests.push_back(read_manifest(dir));
+    for (const std::string& dir : cli.merge_dirs) {
+        require_finished_output(dir);  // a killed or failed shard
+        manifests.push_back(read_manifest(dir));
+    }
     manifests = check_shard_set(std::move(manifests));
     const ShardManifest& first = manifests.front();
     if (first.build != build_id())
@@ -97,6 +103,11 @@ int run_merge(const CliOptions& cli) {
     if (plan.points.size() != first.points)
         throw InputError(first.dir + "/shard.json: /points: " + std::to_string(first.points) + " sweep points, the config has " +
                          std::to_string(plan.points.size()));
+    // shard.json's config is what the merge plans from: it must be the one
+    // the shards ran (each frame file is checked against it again).
+    if (first.config_hash != config_hash(plan.config.dump()))
+        throw InputError(first.dir + "/shard.json: /config_hash: " + first.config_hash + ", but its config_text plans " +
+                         config_hash(plan.config.dump()) + " (edited, or written by another build)");
     // Per point, its bands in order: (shard, unit).
     using Band = std::pair<const ShardManifest*, const ShardManifest::Unit*>;
     std::vector<std::vector<Band>> bands(plan.points.size());
@@ -128,7 +139,9 @@ int run_merge(const CliOptions& cli) {
                 throw InputError(m->dir + "/shard.json: /units: point " + std::to_string(point) + " band " +
                                  std::to_string(b) + " has no frame of method " + method);
             const std::string file = (fs::path(m->dir) / it->second).string();
-            FrameResult f = read_frame_file(file);
+            FrameResult f = read_frame_file(
+                file, frame_identity(plan.points[point].config.dump(), method, point, static_cast<std::uint32_t>(b),
+                                     static_cast<std::uint32_t>(list.size())));
             // The frame the config makes, before the merge allocates it.
             const WorkloadDesc& w = plan.parsed[point].workload;
             const bool camera = w.type != WorkloadType::Rays;
@@ -139,10 +152,30 @@ int run_merge(const CliOptions& cli) {
             return f;
         }, what);
     };
-    const std::string out = cli.out ? *cli.out : "out/" + plan.parsed.front().name;
-    prepare_output_dir(out, cli.limits.force);
+    const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", first.config_file);
+    // Before anything is emptied: --out must not be, hold or lie in a shard
+    // directory the merge reads (--force would empty it first).
+    for (const ShardManifest& m : manifests) {
+        const auto resolved = [](const std::string& p) {
+            std::error_code ec;
+            const fs::path absolute = fs::absolute(p, ec).lexically_normal();
+            const fs::path canonical = fs::weakly_canonical(absolute, ec);
+            return ec || canonical.empty() ? absolute : canonical;
+        };
+        const fs::path target = resolved(out), input = resolved(m.dir);
+        const auto [t, i] = std::mismatch(target.begin(), target.end(), input.begin(), input.end());
+        if (t == target.end() || i == input.end())
+            throw InputError("simulate merge: --out " + out + ": " +
+                             (t == target.end() && i == input.end() ? "is the shard directory "
+                              : t == target.end()                   ? "holds the shard directory "
+                                                                    : "is inside the shard directory ") +
+                             m.dir + " it merges: choose another --out");
+    }
+    OutputDir owned(out, cli.limits.force);  // locked until the merge ends
     if (!cli.quiet) std::cerr << "merging " << manifests.size() << " shards -> " << out << "\n";
-    return run_planned(plan, cli, out, &frames);
+    const int status = run_planned(plan, cli, out, &frames);
+    owned.finish();
+    return status;
 }
 
 int print_shard_estimates(const CliOptions& cli) {

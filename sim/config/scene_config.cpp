@@ -170,7 +170,9 @@ std::filesystem::path resolve_data_path(const JsonReader& block, std::string_vie
     const std::string given = block.string(key, std::nullopt);
     if (given.empty()) block.fail(key, "empty path");
     const std::filesystem::path path = config_relative_path(given, block.file());
-    if (std::filesystem::exists(path)) return path;
+    std::error_code ec;  // a symlink loop or an over-long name: an error naming the key, not a filesystem_error
+    if (std::filesystem::exists(path, ec)) return path;
+    if (ec) block.fail(key, "cannot access " + path.string() + " (" + ec.message() + ")");
     block.fail(key, "no such file: " + path.string() +
                         (std::filesystem::path(given).is_absolute() ? "" : " (paths are relative to the config file)"));
 }

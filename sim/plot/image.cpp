@@ -3,6 +3,7 @@
 #include "sim/plot/image.h"
 
 #include "core/input_error.h"
+#include "sim/util/json_file.h"
 
 #include <algorithm>
 #include <cassert>
@@ -98,9 +99,17 @@ void Image::blit(const Image& src, int x, int y) {
 void write_png(const Image& image, const std::string& path) {
     if (image.width <= 0 || image.height <= 0)
         throw InputError(path + ": cannot write an empty image as PNG");
-    const int ok = stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(),
-                                  image.width * 3);
-    if (!ok) throw InputError(path + ": cannot write PNG file");
+    // stb's own file writer ignores fwrite's and fclose's errors: the encoded
+    // PNG goes through an OutputFile, which checks them (and renames the
+    // finished file into place).
+    OutputFile file(path);
+    const auto sink = [](void* context, void* data, int size) {
+        static_cast<OutputFile*>(context)->write_noexcept(data, static_cast<std::size_t>(size));
+    };
+    const int ok = stbi_write_png_to_func(sink, &file, image.width, image.height, 3, image.rgb.data(),
+                                          image.width * 3);
+    if (!ok) throw InputError(path + ": cannot encode the PNG (out of memory?)");
+    file.commit();
 }
 
 std::uint8_t linear_to_srgb8(float v) {

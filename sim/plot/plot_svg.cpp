@@ -5,6 +5,7 @@
 #include "sim/plot/plot_svg.h"
 
 #include "core/input_error.h"
+#include "sim/util/json_file.h"
 #include "sim/util/table.h"
 #include "sim/plot/ticks.h"
 
@@ -409,11 +410,7 @@ std::string scatter_plot_svg(const ScatterPlot& plot) {
 }
 
 void write_text_file(const std::string& path, const std::string& content) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot open for writing");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) throw InputError(path + ": write failed");
+    write_file_atomically(path, content);
 }
 
 }  // namespace rtc

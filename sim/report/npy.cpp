@@ -2,6 +2,7 @@
 #include "sim/report/npy.h"
 
 #include "core/input_error.h"
+#include "sim/util/json_file.h"
 
 #include <algorithm>
 #include <bit>
@@ -45,13 +46,10 @@ std::string npy_header(NpyType type, const std::vector<std::size_t>& shape) {
 void write_npy(const std::string& path, NpyType type, const std::vector<std::size_t>& shape, const void* data) {
     std::size_t items = 1;
     for (std::size_t n : shape) items *= n;
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot open for writing");
-    const std::string header = npy_header(type, shape);
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    if (items > 0) out.write(static_cast<const char*>(data), static_cast<std::streamsize>(items * npy_item_size(type)));
-    out.flush();
-    if (!out) throw InputError(path + ": write failed");
+    OutputFile out(path);
+    out.write(npy_header(type, shape));
+    if (items > 0) out.write(data, items * npy_item_size(type));
+    out.commit();
 }
 
 void write_npy(const std::string& path, const std::vector<std::size_t>& shape, const std::vector<double>& data) {

@@ -2,6 +2,7 @@
 
 #include "core/input_error.h"
 #include "scenes/loaders/file_bytes.h"
+#include "sim/util/json_file.h"
 
 #include <cstdio>
 #include <cstring>
@@ -13,22 +14,14 @@ namespace rtc {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'T', 'C', 'F', 'R', 'A', 'M', 'E'};
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;  // 2: the identity after the event count
+constexpr std::uint32_t kMaxIdentity = 4096;
 
 class Writer {
 public:
-    explicit Writer(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "wb")) {
-        if (!f_) throw InputError(path + ": cannot open for writing");
-    }
-    ~Writer() {
-        if (f_) std::fclose(f_);
-    }
-    Writer(const Writer&) = delete;
-    Writer& operator=(const Writer&) = delete;
+    explicit Writer(const std::string& path) : file_(path) {}
 
-    void bytes(const void* p, std::size_t n) {
-        if (n && std::fwrite(p, 1, n, f_) != n) throw InputError(path_ + ": write failed (disk full?)");
-    }
+    void bytes(const void* p, std::size_t n) { file_.write(p, n); }
     template <class T>
     void put(const T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -40,15 +33,10 @@ public:
         put<std::uint64_t>(end - begin);
         if (end > begin) bytes(v.data() + begin, (end - begin) * sizeof(T));
     }
-    void close() {
-        const int rc = std::fclose(f_);
-        f_ = nullptr;
-        if (rc != 0) throw InputError(path_ + ": write failed (disk full?)");
-    }
+    void close() { file_.commit(); }
 
 private:
-    std::string path_;
-    std::FILE* f_;
+    OutputFile file_;  // under a temporary name until close()
 };
 
 class Reader {
@@ -87,11 +75,28 @@ private:
 
 }  // namespace
 
-void write_frame_file(const std::string& path, const FrameResult& f) {
+std::string config_hash(const std::string& text) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+std::string frame_identity(const std::string& effective_config, const std::string& method, std::size_t point,
+                           std::uint32_t band, std::uint32_t bands) {
+    return "config " + config_hash(effective_config) + ", method " + method + ", point " + std::to_string(point) +
+           ", band " + std::to_string(band) + " of " + std::to_string(bands);
+}
+
+void write_frame_file(const std::string& path, const FrameResult& f, const std::string& identity) {
+    if (identity.size() > kMaxIdentity) throw InputError(path + ": internal: identity too long");
     Writer w(path);
     w.bytes(kMagic, sizeof kMagic);
     w.put(kFormat);
     w.put(static_cast<std::uint32_t>(kEventCount));
+    w.put(static_cast<std::uint32_t>(identity.size()));
+    w.bytes(identity.data(), identity.size());
     w.put(static_cast<std::uint32_t>(f.warp.size()));
     w.put(static_cast<std::int32_t>(f.width));
     w.put(static_cast<std::int32_t>(f.height));
@@ -121,7 +126,7 @@ void write_frame_file(const std::string& path, const FrameResult& f) {
     w.close();
 }
 
-FrameResult read_frame_file(const std::string& path) {
+FrameResult read_frame_file(const std::string& path, const std::string& identity) {
     Reader r(path);
     char magic[8];
     for (char& c : magic) c = r.get<char>("header");
@@ -129,6 +134,13 @@ FrameResult read_frame_file(const std::string& path) {
     if (r.get<std::uint32_t>("format") != kFormat) r.fail("frame file format of another rtcsim version");
     if (r.get<std::uint32_t>("event count") != kEventCount)
         r.fail("written by an rtcsim with other events (another version)");
+    const std::size_t identity_at = r.offset();
+    const auto length = r.get<std::uint32_t>("identity length");
+    if (length > kMaxIdentity) r.fail("implausible identity length " + std::to_string(length));
+    r.require_records(length, 1, "identity", identity_at);
+    std::string found(length, '\0');
+    for (char& c : found) c = r.get<char>("identity");
+    if (found != identity) r.fail("a frame of " + found + "; the merge expects " + identity);
     const auto presets = r.get<std::uint32_t>("warp presets");
     if (presets > 1024) r.fail("implausible warp preset count " + std::to_string(presets));
     FrameResult f;

@@ -11,14 +11,25 @@
 
 namespace rtc {
 
-void write_frame_file(const std::string& path, const FrameResult& frame);
+// What a frame file is a band of: the run (a hash of the sweep point's
+// effective config), the method and the band, as one line of text recorded in
+// the file; the merge computes the identity it expects from the config it
+// plans and refuses a file with another (swapped methods, a band of a run
+// with another seed, a shard.json whose config was edited).
+[[nodiscard]] std::string frame_identity(const std::string& effective_config, const std::string& method,
+                                         std::size_t point, std::uint32_t band, std::uint32_t bands);
+// FNV-1a (64 bits) of `text`, in hex: the config hash of frame_identity and shard.json.
+[[nodiscard]] std::string config_hash(const std::string& text);
+
+void write_frame_file(const std::string& path, const FrameResult& frame, const std::string& identity);
 
 // The per-item arrays (pixels, or rays of a ray list) hold only the band's
 // items [item_begin, item_end), and the totals only per task (`tasks`).
-// Throws InputError "<path>: byte N: ..." on a truncated, foreign or
+// Throws InputError "<path>: byte N: ..." on a truncated, foreign, misplaced or
 // inconsistent file, with every count checked against the file size before
 // anything is allocated.
-[[nodiscard]] FrameResult read_frame_file(const std::string& path);
+// A file whose identity is not `identity` is refused, naming both.
+[[nodiscard]] FrameResult read_frame_file(const std::string& path, const std::string& identity);
 
 // Adds the bands of one frame (in band order, each from read_frame_file or a
 // banded run) into the frame a single run would have made: pixels from the

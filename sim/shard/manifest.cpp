@@ -10,7 +10,7 @@ namespace rtc {
 
 namespace {
 
-constexpr const char* kFormat = "rtcsim-shard-1";
+constexpr const char* kFormat = "rtcsim-shard-2";  // 2: config_hash, frame identities
 
 }  // namespace
 
@@ -20,16 +20,19 @@ nlohmann::json manifest_json(const ShardManifest& m) {
         units.push_back({{"point", u.unit.point}, {"band", u.unit.band}, {"bands", u.unit.bands}, {"frames", u.frames}});
     return {{"format", kFormat},      {"build", m.build},   {"shard", m.spec.index}, {"shards", m.spec.count},
             {"config_file", m.config_file}, {"points", m.points}, {"units", units}, {"sets", m.sets},
-            {"config_text", m.config_text}};
+            {"config_text", m.config_text}, {"config_hash", m.config_hash}};
 }
 
 ShardManifest read_manifest(const std::string& dir) {
     const std::string file = (std::filesystem::path(dir) / "shard.json").string();
-    if (!std::filesystem::exists(file))
-        throw InputError(file + ": not found (the shard did not finish, or " + dir + " is not a shard directory)");
+    std::error_code ec;  // a symlink loop or an over-long name: an InputError, not a filesystem_error
+    if (!std::filesystem::exists(file, ec))
+        throw InputError(file + (ec ? ": cannot access (" + ec.message() + ")"
+                                    : ": not found (the shard did not finish, or " + dir + " is not a shard directory)"));
     const nlohmann::json j = parse_json_text(read_text_file(file), file);
     const JsonReader r(j, file);
-    r.allow_only({"format", "build", "shard", "shards", "config_file", "points", "units", "sets", "config_text"});
+    r.allow_only({"format", "build", "shard", "shards", "config_file", "points", "units", "sets", "config_text",
+                  "config_hash"});
     ShardManifest m;
     m.dir = dir;
     const std::string format = r.string("format", std::nullopt);
@@ -40,6 +43,7 @@ ShardManifest read_manifest(const std::string& dir) {
     m.config_file = r.string("config_file", std::nullopt);
     m.points = static_cast<std::size_t>(r.integer("points", std::nullopt, 1, 1000000000));
     m.config_text = r.string("config_text", std::nullopt);
+    m.config_hash = r.string("config_hash", std::nullopt);
     if (!j.contains("sets") || !j["sets"].is_array()) r.fail("sets", "expected an array of strings");
     for (std::size_t i = 0; i < j["sets"].size(); ++i) {
         if (!j["sets"][i].is_string()) r.fail("sets/" + std::to_string(i), "expected a string");
@@ -76,7 +80,11 @@ std::vector<ShardManifest> check_shard_set(std::vector<ShardManifest> shards) {
         if (s.spec.count != n)
             throw InputError(what + ": /shards: " + std::to_string(s.spec.count) + " shards, " + first.dir + " has " +
                              std::to_string(n));
-        if (s.config_text != first.config_text || s.sets != first.sets || s.config_file != first.config_file)
+        if (s.points != first.points)
+            throw InputError(what + ": /points: " + std::to_string(s.points) + " sweep points, " + first.dir +
+                             " has " + std::to_string(first.points) + " (shards of different runs)");
+        if (s.config_text != first.config_text || s.sets != first.sets || s.config_file != first.config_file ||
+            s.config_hash != first.config_hash)
             throw InputError(what + ": /config_text: not the config (or --set overrides) of " + first.dir +
                              " (shards of different runs)");
         if (by_index[s.spec.index])

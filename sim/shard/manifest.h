@@ -1,7 +1,8 @@
 // shard.json: what a shard ran and where its frames are, written last so
 // that its presence means the shard finished (slurm-submit --resume relies on
 // it). The merge checks every manifest against the first: same rtcsim build,
-// same config (after --set), same shard count, and every shard present once.
+// same config (after --set), same shard count and sweep points, and every
+// shard present once; then each one's config_hash against the run it plans.
 #pragma once
 
 #include "sim/shard/shard_plan.h"
@@ -21,6 +22,7 @@ struct ShardManifest {
     std::string config_text;      // the config as read (the merge plans the run from it, not from the file)
     std::vector<std::string> sets;  // --set overrides, in order
     std::size_t points = 0;       // sweep points of the whole run
+    std::string config_hash;      // config_hash() of the effective config (the merge plans the same, or refuses)
     struct Unit {
         ShardUnit unit;
         std::map<std::string, std::string> frames;  // method -> frame file, relative to the shard directory

@@ -31,7 +31,7 @@ ShardSpec parse_shard_spec(const std::string& text, const std::string& option) {
 
 std::vector<ShardUnit> shard_units(std::size_t points, std::uint32_t shards) {
     std::vector<ShardUnit> units;
-    if (shards == 0) return units;
+    if (shards == 0 || points == 0) return units;
     if (points >= shards) {
         for (std::size_t p = 0; p < points; ++p) units.push_back({p, 0, 1});
         return units;
@@ -46,9 +46,25 @@ std::vector<ShardUnit> shard_units(std::size_t points, std::uint32_t shards) {
 }
 
 std::vector<ShardUnit> units_of_shard(std::size_t points, const ShardSpec& spec) {
+    // Units index, index + count, ... of shard_units(), computed directly:
+    // listing every unit for each shard made --estimate --shards N quadratic.
     std::vector<ShardUnit> mine;
-    const std::vector<ShardUnit> all = shard_units(points, spec.count);
-    for (std::size_t u = spec.index; u < all.size(); u += spec.count) mine.push_back(all[u]);
+    if (spec.count == 0 || points == 0) return mine;
+    if (points >= spec.count) {
+        for (std::size_t u = spec.index; u < points; u += spec.count) mine.push_back({u, 0, 1});
+        return mine;
+    }
+    // Fewer points than shards: one unit per shard. The first `extra` points
+    // have per + 1 bands, the others per.
+    const auto n = static_cast<std::uint32_t>(points);
+    const std::uint32_t per = spec.count / n, extra = spec.count % n;
+    const std::uint64_t in_longer = std::uint64_t{extra} * (per + 1);
+    if (spec.index < in_longer) {
+        mine.push_back({spec.index / (per + 1), spec.index % (per + 1), per + 1});
+    } else {
+        const auto rest = static_cast<std::uint32_t>(spec.index - in_longer);
+        mine.push_back({extra + rest / per, rest % per, per});
+    }
     return mine;
 }
 

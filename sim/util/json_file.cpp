@@ -3,6 +3,8 @@
 #include "core/input_error.h"
 #include "scenes/loaders/file_bytes.h"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -42,7 +44,30 @@ std::string read_text_file(const std::string& path) {
     return ss.str();
 }
 
+void check_json_depth(std::string_view text, const std::string& file) {
+    int depth = 0;
+    bool in_string = false;
+    std::size_t line = 1;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (c == '\n') ++line;
+        if (in_string) {
+            if (c == '\\') ++i;  // the escaped character cannot end the string
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(file + ": line " + std::to_string(line) + ": JSON nested deeper than " +
+                                 std::to_string(kMaxJsonDepth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+    check_json_depth(text, file);
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error& e) {
@@ -64,6 +89,62 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
         throw InputError(file + ": " + where + "invalid JSON: " +
                          (bracket == std::string::npos ? what : what.substr(bracket + 2)));
     }
+}
+
+OutputFile::OutputFile(std::string path) : path_(std::move(path)), partial_(path_ + ".partial") {
+    f_ = std::fopen(partial_.c_str(), "wb");
+    if (!f_) fail("cannot open for writing", errno);
+}
+
+OutputFile::~OutputFile() {
+    if (!f_) return;
+    std::fclose(f_);
+    std::remove(partial_.c_str());
+}
+
+void OutputFile::fail(const char* what, int error) {
+    if (f_) {
+        std::fclose(f_);
+        f_ = nullptr;
+        std::remove(partial_.c_str());
+    }
+    throw InputError(path_ + ": " + what + (error ? std::string(" (") + std::strerror(error) + ")" : std::string()));
+}
+
+void OutputFile::write_noexcept(const void* data, std::size_t bytes) noexcept {
+    if (error_ || bytes == 0 || !f_) return;
+    errno = 0;
+    if (std::fwrite(data, 1, bytes, f_) != bytes) error_ = errno ? errno : EIO;
+}
+
+void OutputFile::write(const void* data, std::size_t bytes) {
+    write_noexcept(data, bytes);
+    if (error_) fail("write failed", error_);
+}
+
+void OutputFile::commit() {
+    if (!f_) fail("write failed", error_);
+    if (error_) fail("write failed", error_);
+    errno = 0;
+    if (std::fflush(f_) != 0 || std::ferror(f_)) fail("write failed", errno ? errno : EIO);
+    errno = 0;
+    const int closed = std::fclose(f_);
+    f_ = nullptr;
+    if (closed != 0) {
+        std::remove(partial_.c_str());
+        fail("write failed", errno ? errno : EIO);
+    }
+    if (std::rename(partial_.c_str(), path_.c_str()) != 0) {
+        const int e = errno;
+        std::remove(partial_.c_str());
+        fail("cannot rename the finished file into place", e);
+    }
+}
+
+void write_file_atomically(const std::string& path, std::string_view content) {
+    OutputFile f(path);
+    f.write(content);
+    f.commit();
 }
 
 }  // namespace rtc

@@ -13,6 +13,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -111,6 +112,25 @@ TEST_CASE("shard plan: every point and band runs in exactly one shard") {
             for (const auto& [p, b] : bands) CHECK(b.size() == band_count[p]);
             CHECK(units == std::max<std::size_t>(points, shards));
         }
+    // units_of_shard (computed directly, not by listing every unit) is unit
+    // index, index + N, ... of shard_units.
+    for (const std::size_t points : {1u, 2u, 3u, 5u, 8u, 13u})
+        for (const std::uint32_t shards : {1u, 2u, 3u, 7u, 8u, 20u, 31u}) {
+            const std::vector<ShardUnit> all = shard_units(points, shards);
+            for (std::uint32_t i = 0; i < shards; ++i) {
+                CAPTURE(points);
+                CAPTURE(shards);
+                CAPTURE(i);
+                const std::vector<ShardUnit> mine = units_of_shard(points, {i, shards});
+                std::size_t k = 0;
+                for (std::size_t u = i; u < all.size(); u += shards, ++k) {
+                    REQUIRE(k < mine.size());
+                    CHECK((mine[k].point == all[u].point && mine[k].band == all[u].band &&
+                           mine[k].bands == all[u].bands));
+                }
+                CHECK(k == mine.size());
+            }
+        }
     // Bands of tasks tile the frame, also with more bands than tasks.
     for (const std::size_t tasks : {0u, 1u, 5u, 12u, 800u})
         for (const std::uint32_t n : {1u, 3u, 7u}) {
@@ -188,9 +208,15 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
     for (const auto& e : fs::directory_iterator(s1 / "frames")) frame = e.path();
     REQUIRE(!frame.empty());
     const std::string bytes = slurp(frame);
+    // The identity (after magic, format and event count: a length and text).
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 16, 4);
+    REQUIRE(length < 200);
+    const std::string identity = bytes.substr(20, length);
+    CHECK(identity.find(", band 1 of 2") != std::string::npos);
     std::ofstream(frame, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
     try {
-        (void)read_frame_file(frame.string());
+        (void)read_frame_file(frame.string(), identity);
         FAIL("a truncated frame file was read");
     } catch (const InputError& e) {
         CHECK(std::string(e.what()).find(frame.string() + ": byte ") == 0);
@@ -199,13 +225,86 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
     // Hostile header fields (counts, sizes, offsets at their maximum) are
     // refused with the file's name, before anything large is allocated. (A
     // huge task count alone is consistent; the merge refuses the band.)
-    for (const std::size_t at : {16u, 20u, 24u, 36u, 44u, 60u}) {
+    const std::size_t shift = 4 + length;  // the fields after the identity
+    for (const std::size_t at : std::initializer_list<std::size_t>{16, 16 + shift, 20 + shift, 24 + shift, 36 + shift, 44 + shift, 60 + shift}) {
         CAPTURE(at);
         std::string bad = bytes;
         for (std::size_t k = at; k < at + 8; ++k) bad[k] = static_cast<char>(0xFF);
         std::ofstream(frame, std::ios::binary | std::ios::trunc).write(bad.data(), static_cast<std::streamsize>(bad.size()));
-        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string()), doctest::Contains(frame.string().c_str()), InputError);
+        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity), doctest::Contains(frame.string().c_str()),
+                             InputError);
     }
     // Calibration does not shard.
     CHECK(simulate({"calibrate", "configs/runs/fig3_bundles.json", "--shard", "0/2", "--out", fresh("cal").string()}) == 2);
+}
+
+TEST_CASE("shard merge: checks what it merges (frame identities, every shard's points, --out not an input)") {
+    const std::vector<std::string> base = {kTiny, "--set", "output.images=false", "--set", "output.rays=false",
+                                           "--set", "workload.width=16", "--set", "workload.height=16"};
+    const auto shard = [&](const fs::path& out, const std::string& spec, std::vector<std::string> extra = {}) {
+        std::vector<std::string> a = base;
+        a.insert(a.end(), extra.begin(), extra.end());
+        a.insert(a.end(), {"--shard", spec, "--out", out.string()});
+        return simulate(a);
+    };
+    const auto merge_error = [&](std::vector<std::string> args) {
+        args.insert(args.begin(), "merge");
+        args.push_back("--quiet");
+        try {
+            (void)run_merge(parse_cli(args));
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    const fs::path s0 = fresh("id_s0"), s1 = fresh("id_s1"), seed = fresh("id_seed");
+    REQUIRE(shard(s0, "0/2") == 0);
+    REQUIRE(shard(s1, "1/2") == 0);
+    REQUIRE(shard(seed, "1/2", {"--set", "scene.seed=7"}) == 0);
+    const fs::path ref = s1 / "frames" / "0_1_ref.bin", obb = s1 / "frames" / "0_1_obb.bin";
+    REQUIRE(fs::exists(ref));
+    REQUIRE(fs::exists(obb));
+    // Swapped methods: the ref file holds obb's frame.
+    fs::rename(ref, s1 / "frames" / "tmp.bin");
+    fs::rename(obb, ref);
+    fs::rename(s1 / "frames" / "tmp.bin", obb);
+    std::string e = merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()});
+    CHECK(e.find(ref.string() + ": byte ") == 0);
+    CHECK(e.find("a frame of config ") != std::string::npos);
+    CHECK(e.find(", method obb, point 0, band 1 of 2; the merge expects config ") != std::string::npos);
+    CHECK(e.find(", method ref, point 0, band 1 of 2") != std::string::npos);
+    // A band of a run with another seed, under the right name.
+    fs::copy_file(seed / "frames" / "0_1_ref.bin", ref, fs::copy_options::overwrite_existing);
+    e = merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()});
+    CHECK(e.find(ref.string() + ": byte ") == 0);
+    CHECK(e.find(", method ref, point 0, band 1 of 2; the merge expects") != std::string::npos);
+    // shard.json's config edited (the merge plans from it): refused.
+    REQUIRE(shard(fresh("id_s1"), "1/2") == 0);
+    nlohmann::json manifest = nlohmann::json::parse(slurp(s0 / "shard.json"));
+    nlohmann::json edited = nlohmann::json::parse(manifest["config_text"].get<std::string>());
+    edited["scene"]["seed"] = 7;
+    manifest["config_text"] = edited.dump();
+    write_file_atomically((s0 / "shard.json").string(), manifest.dump());
+    nlohmann::json other = nlohmann::json::parse(slurp(s1 / "shard.json"));
+    other["config_text"] = manifest["config_text"];
+    write_file_atomically((s1 / "shard.json").string(), other.dump());
+    e = merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()});
+    CHECK(e.find(s0.string() + "/shard.json: /config_hash: ") == 0);
+    // Every shard's sweep point count, not only the first's.
+    REQUIRE(shard(fresh("id_s0"), "0/2") == 0);
+    REQUIRE(shard(fresh("id_s1"), "1/2") == 0);
+    other = nlohmann::json::parse(slurp(s1 / "shard.json"));
+    other["points"] = 2;
+    write_file_atomically((s1 / "shard.json").string(), other.dump());
+    e = merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()});
+    CHECK(e.find(s1.string() + "/shard.json: /points: 2 sweep points") == 0);
+    // --out equal to an input is refused before anything is emptied.
+    REQUIRE(shard(fresh("id_s1"), "1/2") == 0);
+    e = merge_error({s0.string(), s1.string(), "--out", s1.string(), "--force"});
+    CHECK(e == "simulate merge: --out " + s1.string() + ": is the shard directory " + s1.string() +
+                   " it merges: choose another --out");
+    CHECK(fs::exists(s1 / "shard.json"));
+    e = merge_error({s0.string(), s1.string(), "--out", (s0 / "frames").string(), "--force"});
+    CHECK(e.find("is inside the shard directory " + s0.string()) != std::string::npos);
+    CHECK(merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()}) == "(no error)");
 }
