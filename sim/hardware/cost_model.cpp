@@ -63,6 +63,25 @@ void parse_hypothetical(const JsonReader& r, CostModel& m) {
     }
 }
 
+std::vector<std::string> parse_features(const JsonReader& r) {
+    const nlohmann::json& f = r.json()["features"];
+    if (!f.is_array()) r.fail("features", "expected a list of hardware feature names");
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+        const std::string key = "features/" + std::to_string(i);
+        if (!f[i].is_string()) r.fail(key, "expected a feature name, got " + describe(f[i]));
+        const std::string name = f[i].get<std::string>();
+        // A misspelt feature would make a method n/a with exit 0.
+        if (std::find(std::begin(kHardwareFeatures), std::end(kHardwareFeatures), name) == std::end(kHardwareFeatures)) {
+            std::string known;
+            for (const char* k : kHardwareFeatures) known += (known.empty() ? "" : ", ") + std::string(k);
+            r.fail(key, "unknown hardware feature " + describe(f[i]) + " (known: " + known + ")");
+        }
+        out.push_back(name);
+    }
+    return out;
+}
+
 bool CostModel::prices(Event e) const {
     if (is_operation_event(e)) return program_pricing == ProgramPricing::ByOperation;
     if (is_program_name_event(e)) return program_pricing == ProgramPricing::ByName;
@@ -131,16 +150,7 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
     CostModel m;
     m.name = r.string("name", std::nullopt);
     m.description = r.string("description", "");
-    if (r.has("features")) {
-        const nlohmann::json& f = j["features"];
-        if (!f.is_array()) r.fail("features", "expected a list of hardware feature names");
-        m.features.clear();
-        for (std::size_t i = 0; i < f.size(); ++i) {
-            if (!f[i].is_string() || f[i].get<std::string>().empty())
-                r.fail("features/" + std::to_string(i), "expected a feature name, got " + describe(f[i]));
-            m.features.push_back(f[i].get<std::string>());
-        }
-    }
+    if (r.has("features")) m.features = parse_features(r);
     if (r.has("hypothetical")) parse_hypothetical(r.child("hypothetical"), m);
     if (r.has("execution")) m.execution = parse_execution_model(r.child("execution"));
     if (r.has("fitted_on")) {

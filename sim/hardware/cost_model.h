@@ -117,6 +117,12 @@ struct PricedRun {
 // Orders sums so that each comes after the sums among its terms (settle()
 // then computes them in one pass); false when they refer to each other in a cycle.
 [[nodiscard]] bool order_compositions(std::vector<ComposedCost>& composed);
+// The hardware features a preset may list; a method needs some of them
+// (MethodInfo::needs, a test checks every method's needs are here).
+inline constexpr const char* kHardwareFeatures[] = {"custom_primitives", "instance_transforms", "lss", "obb_nodes",
+                                                    "quantized_obb_nodes"};
+// A preset's "features" list, each one of kHardwareFeatures.
+[[nodiscard]] std::vector<std::string> parse_features(const JsonReader& preset);
 // A "hypothetical" block {"<method>": "why", ...} into m.hypothetical
 // (entries for a method already there are replaced).
 void parse_hypothetical(const JsonReader& block, CostModel& m);

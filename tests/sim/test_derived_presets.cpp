@@ -8,6 +8,7 @@
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/presets/derived_preset.h"
 #include "sim/hardware/warp_pricing.h"
+#include "sim/methods/method.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
 #include "sim/run/simulation.h"
@@ -223,4 +224,21 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
                 CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles()).epsilon(1e-12));
         }
     }
+}
+
+TEST_CASE("hardware features: a preset lists only known ones, and every method's needs are known") {
+    nlohmann::json j = nlohmann::json::parse(read_text_file(kHw + "turing-calibrated.json"));
+    j["features"] = {"custom_primitives", "instance_transform"};  // a typo would make obb n/a with exit 0
+    CHECK_THROWS_WITH_AS((void)parse_cost_model(j.dump(), "p.json"),
+                         doctest::Contains("p.json: /features/1: unknown hardware feature \"instance_transform\" (known: "),
+                         InputError);
+    const fs::path dir = scratch();
+    nlohmann::json d = derived(nlohmann::json::array());
+    d["features"] = {"lss", "obb-nodes"};
+    CHECK(error_of(dir, d).find(": /features/1: unknown hardware feature \"obb-nodes\"") == 0);
+    for (const MethodEntry& m : registered_methods())
+        for (const std::string& need : m.info.needs) {
+            CAPTURE(m.info.name);
+            CHECK(std::find(std::begin(kHardwareFeatures), std::end(kHardwareFeatures), need) != std::end(kHardwareFeatures));
+        }
 }

@@ -73,16 +73,7 @@ CostModel parse_derived_preset(const JsonReader& r) {
     m.description = r.string("description", "");
     for (std::size_t i = 0; i < kEventCount; ++i)
         if (m.prices(static_cast<Event>(i))) m.source[i] = m.derived_from + ": " + m.source[i];
-    if (r.has("features")) {
-        const nlohmann::json& f = r.json()["features"];
-        if (!f.is_array()) r.fail("features", "expected a list of hardware feature names");
-        m.features.clear();
-        for (std::size_t i = 0; i < f.size(); ++i) {
-            if (!f[i].is_string() || f[i].get<std::string>().empty())
-                r.fail("features/" + std::to_string(i), "expected a feature name, got " + describe(f[i]));
-            m.features.push_back(f[i].get<std::string>());
-        }
-    }
+    if (r.has("features")) m.features = parse_features(r);
     if (r.has("hypothetical")) parse_hypothetical(r.child("hypothetical"), m);
     if (r.has("execution")) m.execution = parse_execution_model(r.child("execution"), m.execution);
 
