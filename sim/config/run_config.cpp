@@ -8,10 +8,6 @@
 
 namespace rtc {
 
-std::string resolve_config_path(const std::string& path, const std::string& file) {
-    return config_relative_path(path, file);
-}
-
 namespace {
 
 BuildOptions read_build(const JsonReader& r, BuildOptions o) {

@@ -66,8 +66,4 @@ struct RunConfig {
 // Parses one (sweep-expanded) config. Throws InputError "<file>: <path>: ...".
 [[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file);
 
-// Resolves a path from a config: as given if absolute, else relative to the
-// config file's directory (never the working directory).
-[[nodiscard]] std::string resolve_config_path(const std::string& path, const std::string& file);
-
 }  // namespace rtc

@@ -22,11 +22,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::string& config_file) {
+RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds) {
     RayWorkload f;
     if (w.type == WorkloadType::Rays) {
         f.from_camera = false;
-        f.rays = read_ray_file(resolve_config_path(w.rays_file, config_file));
+        f.rays = read_ray_file(w.rays_file);  // resolved when the config was parsed
         return f;
     }
     f.camera = make_camera(w, bounds);
@@ -184,7 +184,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.mesh_triangles = scene.mesh.triangles.size();
     r.convert_seconds = seconds_since(t_convert);
 
-    RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry), c.file);
+    RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry));
     r.camera = frame.camera;
     bool rays_written = false;
     for (const std::string& name : c.methods) {

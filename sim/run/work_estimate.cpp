@@ -110,7 +110,7 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
     double pixels = 0.0;
     if (w.type == WorkloadType::Rays) {
         std::error_code ec;
-        const auto size = std::filesystem::file_size(resolve_config_path(w.rays_file, c.file), ec);
+        const auto size = std::filesystem::file_size(w.rays_file, ec);
         const double rays = ec ? 0.0 : static_cast<double>(size / 32);
         e.rays = rays * methods;
         e.rays_key = "/workload/rays_file";
