@@ -6,6 +6,7 @@
 #include "sim/calibrate/calibrate_report.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
+#include "sim/util/paths.h"
 #include "sim/config/run_config.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
@@ -70,11 +71,35 @@ RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vec
     for (const std::string& s : sets) apply_set(config, s, file);
     (void)sweep_point_count(config, file, limits);  // before expanding it
     plan.points = expand_sweep(config, file, sweep_order);
-    // Parse every point before any work, so a bad value fails in a second.
+    // Every point parsed, its scene checked and its presets loaded (each file
+    // once) before any work, so a bad value fails in a second; every point's
+    // errors are reported, not only the first point's.
+    std::vector<std::string> errors;
+    const auto note = [&](const InputError& e) {
+        if (std::find(errors.begin(), errors.end(), e.what()) == errors.end()) errors.emplace_back(e.what());
+    };
+    PresetCache presets;
     std::vector<WorkEstimate> estimates;
     for (const SweepPoint& p : plan.points) {
-        plan.parsed.push_back(parse_run_config(p.config, file));
-        estimates.push_back(estimate_config_work(plan.parsed.back()));
+        try {
+            plan.parsed.push_back(parse_run_config(p.config, file, &presets));
+            estimates.push_back(estimate_config_work(plan.parsed.back()));
+        } catch (const InputError& e) {
+            note(e);
+        }
+    }
+    if (config.contains("calibrate")) {
+        try {
+            plan.calibrate = parse_calibrate(JsonReader(config, file).child("calibrate"));
+            if (!plan.calibrate->start.empty()) (void)resolve_preset(plan.calibrate->start, file, "/calibrate/start");
+        } catch (const InputError& e) {
+            note(e);
+        }
+    }
+    if (!errors.empty()) {
+        std::string all;
+        for (const std::string& e : errors) all += (all.empty() ? "" : "\n") + e;
+        throw InputError(all);
     }
     plan.work = combine_work(estimates);
     check_work(plan.work, limits, file);

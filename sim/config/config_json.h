@@ -1,8 +1,9 @@
 // The parsed config back as JSON, every default filled in (report.json's
 // provenance/effective_config). Keys are the config keys (configs/README.md),
 // so the result parses again as a config; preset and ray-file paths are
-// written absolute, as they were resolved. The scene block is the one given
-// (its defaults are applied when the scene is loaded: docs/scenes.md).
+// written absolute, as they were resolved. The scene and calibrate blocks
+// are written as given in `given`, the point's config (the scene's defaults
+// are applied when it is loaded: docs/scenes.md).
 #pragma once
 
 #include "sim/config/run_config.h"
@@ -12,6 +13,6 @@
 namespace rtc {
 
 [[nodiscard]] nlohmann::ordered_json workload_to_json(const WorkloadDesc& w);
-[[nodiscard]] nlohmann::ordered_json run_config_to_json(const RunConfig& c);
+[[nodiscard]] nlohmann::ordered_json run_config_to_json(const RunConfig& c, const nlohmann::json& given);
 
 }  // namespace rtc

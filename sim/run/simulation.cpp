@@ -1,10 +1,6 @@
 #include "sim/run/simulation.h"
 
-#include "core/input_error.h"
-
-#include "sim/util/json_reader.h"
 #include "sim/workload/ray_file.h"
-#include "sim/config/scene_config.h"
 
 #include <algorithm>
 #include <chrono>
@@ -34,23 +30,20 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds) {
     return f;
 }
 
-// Loads the cost and memory presets into `r`; returns, per cost preset, its
-// index among the warp presets (SIZE_MAX for per-ray presets).
-std::vector<std::size_t> load_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
+// The config's cost and memory presets (loaded and checked when it was
+// parsed) into `r`; returns, per cost preset, its index among the warp
+// presets (SIZE_MAX for per-ray presets). The warp presets group rays alike
+// (parse_run_config checked it): the first one's grouping serves them all.
+std::vector<std::size_t> take_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
     r.costs.clear();
-    for (const std::string& p : c.cost_presets) r.costs.push_back(load_cost_model(p));
-    r.memory = load_memory_model(c.memory_preset);
+    for (const auto& cost : c.costs) r.costs.push_back(*cost);
+    r.memory = *c.memory;
     r.warp_grouping.reset();
-    // One traced frame serves every preset, so warp presets must group rays alike.
     std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
     for (std::size_t p = 0; p < r.costs.size(); ++p) {
         const CostModel& cost = r.costs[p];
         if (!cost.execution.warp()) continue;
         if (!r.warp_grouping) r.warp_grouping = cost.execution;
-        if (!r.warp_grouping->same_grouping(cost.execution))
-            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
-                             " groups rays into other warps (warp_width, tile) than " + r.costs[0].name +
-                             "; presets of one run must share them");
         warp_index[p] = warp_presets.size();
         warp_presets.push_back(&cost);
     }
@@ -168,11 +161,11 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.config = c;
     r.effective_config = effective;
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
     const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
 
     const auto t_load = std::chrono::steady_clock::now();
-    const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
+    const Scene scene = load_scene(c.scene);
     r.load_seconds = seconds_since(t_load);
     check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
@@ -269,7 +262,7 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
     r.provenance = nullptr;
     r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
     if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
         return std::nullopt;
     const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());

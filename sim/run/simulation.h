@@ -88,6 +88,8 @@ struct RunContext {
     std::function<FrameResult(const std::string& method)> frame_source;
 };
 
+// `config` is all a run reads: its scene description, resolved paths and
+// loaded presets (parse_run_config).
 [[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,
                                        const RunContext& context);
 

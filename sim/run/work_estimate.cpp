@@ -42,20 +42,14 @@ std::string count_text(double x) {
 
 namespace {
 
-double procedural_primitives(const nlohmann::json& scene, std::string& key) {
-    if (!scene.is_object() || !scene.contains("type") || !scene["type"].is_string()) return 0.0;
-    const auto number = [&](const char* k, double fallback) {
-        const auto it = scene.find(k);
-        return it != scene.end() && it->is_number() ? it->get<double>() : fallback;
-    };
-    const std::string type = scene["type"].get<std::string>();
-    if (type == "bundle") {
+double procedural_primitives(const SceneDesc& scene, std::string& key) {
+    if (scene.type == SceneType::Bundle) {
         key = "/scene/count";
-        return number("count", 1000.0);
+        return scene.bundle.count;
     }
-    if (type == "hair") {
+    if (scene.type == SceneType::Hair) {
         key = "/scene/strands";
-        return number("strands", 10000.0) * std::max(1.0, number("points_per_strand", 8.0) - 1.0);
+        return static_cast<double>(scene.hair.strands) * std::max(1.0, scene.hair.points_per_strand - 1.0);
     }
     return 0.0;
 }

@@ -43,6 +43,10 @@ TEST_CASE("break-even map: the config block names unknown events and bad ranges 
     c["break_even"][0]["y"]["max"] = 0.5;
     CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"), doctest::Contains("/break_even/0/y/max"), InputError);
     c["break_even"][0]["y"]["max"] = 5;
+    // The preset is one of the run's, checked with the presets loaded.
+    CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"),
+                         "x.json: /break_even: preset \"p\" is not one of the run's cost presets", InputError);
+    c["break_even"][0]["preset"] = "turing-calibrated";
     const RunConfig r = parse_run_config(c, "x.json");
     REQUIRE(r.break_even.size() == 1);
     CHECK(r.break_even[0].y.events == std::vector<Event>{Event::ObbBoxTest});
