@@ -43,6 +43,12 @@ struct RunPlan {
                                 const std::vector<std::string>& sets = {}, const WorkLimits& limits = {},
                                 const std::vector<std::string>& sweep_order = {});
 
+// The number of points a config's `sweep` block expands to, computed without
+// expanding it; throws InputError naming /sweep above the limit (unless
+// forced) or on overflow.
+[[nodiscard]] double sweep_point_count(const nlohmann::json& config, const std::string& file,
+                                       const WorkLimits& limits);
+
 // Runs point `i` of a plan under the plan's limits (its sweep values, label
 // and provenance set on the result).
 [[nodiscard]] RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context);

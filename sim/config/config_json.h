@@ -12,6 +12,16 @@
 
 namespace rtc {
 
+// What report.json writes of a sweep point besides its results: its config
+// as given (overrides and sweep values applied), its sweep values, and the
+// provenance the app adds (sim/app/provenance.h). The run layer carries it
+// from the plan to the result without reading it.
+struct PointJson {
+    nlohmann::json config;
+    nlohmann::json values = nlohmann::json::object();
+    nlohmann::ordered_json provenance;
+};
+
 [[nodiscard]] nlohmann::ordered_json workload_to_json(const WorkloadDesc& w);
 [[nodiscard]] nlohmann::ordered_json run_config_to_json(const RunConfig& c, const nlohmann::json& given);
 

@@ -154,12 +154,10 @@ double RunResult::memory_overhead_percent(std::string_view name) const {
     return 100.0 * (other->memory.total() - base->memory.total()) / base->memory.total();
 }
 
-RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
-                         const RunContext& ctx) {
+RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const auto t_start = std::chrono::steady_clock::now();
     RunResult r;
     r.config = c;
-    r.effective_config = effective;
     std::vector<const CostModel*> warp_presets;
     const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
     const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
@@ -243,23 +241,12 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     return r;
 }
 
-bool same_trace(const nlohmann::json& a, const nlohmann::json& b) {
-    if (!a.is_object() || !b.is_object()) return a == b;
-    nlohmann::json x = a, y = b;
-    for (const char* key : {"cost", "memory", "name", "description"}) {
-        x.erase(key);
-        y.erase(key);
-    }
-    return x == y;
-}
-
-std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c, const nlohmann::json& effective) {
+std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c) {
     const auto t_start = std::chrono::steady_clock::now();
     RunResult r = traced;
     r.config = c;
-    r.effective_config = effective;
+    r.point = {};  // the app sets the point's own
     r.repriced = true;
-    r.provenance = nullptr;
     r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
     std::vector<const CostModel*> warp_presets;
     const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);

@@ -3,7 +3,6 @@
 
 #include "core/input_error.h"
 #include "core/sinks.h"
-#include "sim/util/json_reader.h"
 #include "sim/config/run_config.h"
 
 #include <unistd.h>
@@ -198,29 +197,6 @@ void check_work(const WorkEstimate& e, const WorkLimits& limits, const std::stri
         throw InputError(file + ": " + e.memory_key + ": about " + format_bytes(e.memory_bytes) +
                          " of memory (" + e.memory_detail + ") exceed --max-memory " +
                          format_bytes(ceiling) + " (raise it or pass --force to run anyway)");
-}
-
-double sweep_point_count(const nlohmann::json& config, const std::string& file, const WorkLimits& limits) {
-    if (!config.is_object() || !config.contains("sweep")) return 1.0;
-    const nlohmann::json& sweep = config["sweep"];
-    const JsonReader r(sweep, file, "/sweep");
-    r.require_object();
-    double points = 1.0;
-    std::string largest;
-    std::size_t largest_size = 0;
-    for (const auto& [key, values] : sweep.items()) {
-        if (!values.is_array() || values.empty())
-            r.fail(key, "expected a non-empty list of values, got " + describe(values));
-        points *= static_cast<double>(values.size());  // doubles: no wrap, at worst inf
-        if (values.size() > largest_size) {
-            largest_size = values.size();
-            largest = key;
-        }
-    }
-    if (points > limits.max_sweep_points && !limits.force)
-        r.fail(largest, "the sweep has " + count_text(points) + " points, more than " +
-                            count_text(limits.max_sweep_points) + " (pass --force to run it anyway)");
-    return points;
 }
 
 }  // namespace rtc

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fuzz_common.h"
+#include "sim/app/run_all.h"
 #include "sim/calibrate/calibrate_config.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/util/json_file.h"
