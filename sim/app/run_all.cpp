@@ -114,7 +114,8 @@ RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vec
     if (config.contains("calibrate")) {
         try {
             plan.calibrate = parse_calibrate(JsonReader(config, file).child("calibrate"));
-            if (!plan.calibrate->start.empty()) (void)resolve_preset(plan.calibrate->start, file, "/calibrate/start");
+            if (!plan.calibrate->start.empty())  // found and valid before the runs the fit needs
+                (void)load_cost_model(resolve_preset(plan.calibrate->start, file, "/calibrate/start"));
         } catch (const InputError& e) {
             note(e);
         }

@@ -195,6 +195,22 @@ TEST_CASE("calibrate: an existing output file is refused before tracing, unless 
                          doctest::Contains("is a shipped preset"), InputError);
 }
 
+TEST_CASE("calibrate: the start preset is loaded and checked when the config is planned") {
+    const fs::path dir = scratch("calibrate_start");
+    write(dir / "start.json", "{\"name\": \"broken\"}");
+    json config = json::parse(read_text_file(kTiny));
+    config["cost"] = json::array({"turing-guess"});
+    config["memory"] = "memory-optix7";
+    config["calibrate"] = {{"parameters", {{{"events", {"context_switch"}}, {"min", 1}, {"max", 10}}}},
+                           {"targets", {{{"label", "tiny"}, {"speedup", 2.0}}}},
+                           {"start", "start.json"}};
+    const std::string file = (dir / "run.json").string();
+    CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains((dir / "start.json").string().c_str()),
+                         InputError);
+    config["calibrate"]["start"] = "turing-guess";
+    CHECK(plan_runs(config, file).calibrate->start == "turing-guess");
+}
+
 TEST_CASE("provenance: version, commit, effective config with defaults, presets, threads, date") {
     const fs::path out = scratch("provenance");
     REQUIRE(simulate({kTiny, "--out", out.string(), "--set", "output.images=false", "--set", "workload.width=8",
