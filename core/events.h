@@ -126,6 +126,24 @@ static_assert(std::size(kEventUnits) == kEventCount, "every Event needs a unit i
     return (e >= Event::IsCylinder && e <= Event::PhantomSecondEnd) || e == Event::LeafObbTest;
 }
 
+// The events of unit U (with `Others`, of every unit but U) as indices in
+// enum order: the one list pricing (sim/hardware/warp_pricing.cpp), a
+// recorded wave's lanes (warp_trace.cpp) and a call's program profile
+// (call_profiles.h) iterate, so an event's unit is said in kEventUnits only.
+template <EventUnit U, bool Others = false>
+[[nodiscard]] constexpr auto events_of_unit() {
+    constexpr std::size_t n = [] {
+        std::size_t k = 0;
+        for (const EventUnit u : kEventUnits) k += (u == U) != Others;
+        return k;
+    }();
+    std::array<std::uint8_t, n> idx{};
+    std::size_t k = 0;
+    for (std::size_t e = 0; e < kEventCount; ++e)
+        if ((kEventUnits[e] == U) != Others) idx[k++] = static_cast<std::uint8_t>(e);
+    return idx;
+}
+
 [[nodiscard]] constexpr EventUnit event_unit(Event e) {
     return kEventUnits[static_cast<std::size_t>(e)];
 }

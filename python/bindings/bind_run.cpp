@@ -134,9 +134,9 @@ void bind_run(py::module_& m) {
         .def_property_readonly("file", [](const RunHandle& h) { return h.run->config.file; })
         .def_property_readonly("baseline", [](const RunHandle& h) { return h.run->config.baseline; })
         .def_property_readonly("sweep_label", [](const RunHandle& h) { return h.run->sweep_label; })
-        .def_property_readonly("sweep_values_json", [](const RunHandle& h) { return h.run->sweep_values.dump(); })
+        .def_property_readonly("sweep_values_json", [](const RunHandle& h) { return h.run->point.values.dump(); })
         .def_property_readonly("effective_config_json", [](const RunHandle& h) {
-            return h.run->effective_config.dump();
+            return h.run->point.config.dump();
         })
         .def_property_readonly("costs", [](const RunHandle& h) { return h.run->costs; },
                                "The run's cost presets (copies), primary first.")

@@ -25,8 +25,8 @@ except ImportError as _e:
         f"rtcsim was built for {_BUILT_FOR} (Python {_BUILT_VERSION}, with NumPy) and cannot be imported by "
         f"{_sys.executable} (Python {_sys.version_info[0]}.{_sys.version_info[1]}: {_e}); run {_BUILT_FOR} "
         "instead (build/rtcsim-python is that interpreter with build/python on its path)") from None
-from .api import (PRESET_DIR, calibrate, load_cost_model, load_scene, plan, price, run, simulate,
-                  summary_table, sweep)
+from .api import calibrate, load_scene, plan, price, run, simulate, summary_table, sweep
+from .presets import PRESET_DIR, load_cost_model
 from .report import Report, load_report, load_reports
 from .results import EVENT_INDEX, MethodResult, Result, event_index
 

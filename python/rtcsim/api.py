@@ -9,9 +9,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from . import _rtcsim
+from .presets import load_cost_model
 from .results import MethodResult, Result
-
-PRESET_DIR = os.path.join(os.path.dirname(__file__), "configs", "hw")
 
 
 def _json_default(value):
@@ -113,20 +112,6 @@ def simulate(*args):
     if len(args) == 1 and not isinstance(args[0], (str, os.PathLike)):
         args = tuple(args[0])
     return _rtcsim.simulate_main([os.fspath(a) if isinstance(a, os.PathLike) else str(a) for a in args])
-
-
-def load_cost_model(preset):
-    """A cost preset: a CostModel (returned as is), a preset file, or a
-    preset name from configs/hw ("turing-per-ray-guess", "turing-calibrated", ...)."""
-    if isinstance(preset, _rtcsim.CostModel):
-        return preset
-    path = os.fspath(preset)
-    if not os.path.exists(path):
-        for candidate in (os.path.join(PRESET_DIR, path), os.path.join(PRESET_DIR, path + ".json")):
-            if os.path.isfile(candidate):
-                path = candidate
-                break
-    return _rtcsim.CostModel.load(path)
 
 
 def price(counts, preset):

@@ -8,6 +8,7 @@ import json
 import numpy as np
 
 from . import _rtcsim
+from .presets import load_cost_model
 from .report import Report
 
 EVENT_INDEX = {name: i for i, name in enumerate(_rtcsim.EVENT_NAMES)}
@@ -50,7 +51,6 @@ class MethodResult:
     def price(self, preset):
         """Re-prices this method's counts under a preset (name, path or
         CostModel) without tracing; warp presets re-price the recorded waves."""
-        from .api import load_cost_model
         return self._m.price(load_cost_model(preset))
 
     def priced_by_preset(self):

@@ -86,3 +86,34 @@ def test_na_rows_load_as_nan(simulate, tmp_path):
         assert np.issubdtype(data[field].dtype, np.floating), field
         assert np.isnan(data[field][lss]).all() and not np.isnan(data[field][~lss]).any(), field
     assert "not linear swept spheres" in data["reason"][lss][0]
+
+
+def test_relative_rays_file_is_beside_the_config(simulate, tmp_path, monkeypatch):
+    """A ray file named relative to a config in a subdirectory is the one
+    beside the config, from any working directory (it was resolved twice:
+    sub/sub/rays.bin, where a decoy with other rays sits here)."""
+    import rtcsim
+    record, decoy = tmp_path / "record", tmp_path / "decoy"
+    for out, size in ((record, 48), (decoy, 16)):
+        done = simulate("tests/configs/tiny.json", "--quiet", "--out", out, "--set", "output.images=false",
+                        "--set", f"workload.width={size}", "--set", f"workload.height={size}")
+        assert done.returncode == 0, done.stderr
+    sub = tmp_path / "sub"
+    (sub / "sub").mkdir(parents=True)
+    (sub / "rays.bin").write_bytes((record / "rays.bin").read_bytes())
+    (sub / "sub" / "rays.bin").write_bytes((decoy / "rays.bin").read_bytes())
+    (sub / "run.json").write_text(json.dumps({
+        "scene": {"type": "bundle", "count": 60, "radius": 0.01, "tilt_deg": 30, "seed": 2},
+        "cost": ["turing-per-ray-guess"], "memory": "memory-optix7",
+        "workload": {"type": "rays", "rays_file": "rays.bin"},
+        "output": {"images": False, "hits": True}}))
+    rays = (record / "rays.bin").stat().st_size // 32
+    hits = []
+    for cwd, config in ((tmp_path, "sub/run.json"), (sub, "run.json")):
+        monkeypatch.chdir(cwd)
+        result = rtcsim.run(config, threads=2, progress=False)
+        assert result.method("ref").rays_traced == rays
+        assert result.data["config"]["workload"]["rays_file"] == "rays.bin"
+        assert result.data["provenance"]["effective_config"]["workload"]["rays_file"] == str(sub / "rays.bin")
+        hits.append(result.method("ref").hits.copy())
+    assert np.array_equal(hits[0], hits[1])

@@ -113,3 +113,36 @@ def test_cost_model_round_trip():
         j = json.loads(m.to_json())
         del j["cycles"]["ray"]
         rtcsim.CostModel.from_json(json.dumps(j), "x.json")
+
+
+def test_package_modules_import_in_one_direction():
+    """No two of rtcsim's modules import each other, directly or through
+    others (api -> results -> report; both use presets), so each loads and
+    reads on its own."""
+    import ast
+    import pathlib
+
+    import rtcsim
+    package = pathlib.Path(rtcsim.__file__).parent
+    names = {f.stem for f in package.glob("*.py")}
+    graph = {}
+    for f in package.glob("*.py"):
+        deps = set()
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                deps.update([node.module.split(".")[0]] if node.module else [a.name for a in node.names])
+        graph[f.stem] = deps & names - {"__init__"}
+    assert {"api", "results", "presets"} <= names
+    state = {}
+
+    def visit(module, path):
+        if state.get(module) == "done":
+            return
+        assert state.get(module) != "open", "import cycle: " + " -> ".join(path + [module])
+        state[module] = "open"
+        for dep in sorted(graph[module]):
+            visit(dep, path + [module])
+        state[module] = "done"
+
+    for module in sorted(graph):
+        visit(module, [])

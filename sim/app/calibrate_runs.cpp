@@ -36,7 +36,7 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     std::vector<CalibrationRun> fit_runs;
     for (RunResult* r : runs) {
         const std::string label = label_of(*r);
-        const CalibrationTarget* target = find_target(desc, r->sweep_values, label);
+        const CalibrationTarget* target = find_target(desc, r->point.values, label);
         MethodRun* ref = r->baseline();
         MethodRun* obb = r->find(desc.method);
         if (!target || !ref || !obb || !ref->runnable || !obb->runnable) {
@@ -54,7 +54,7 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     std::vector<nlohmann::json> values;
     std::vector<std::string> labels;
     for (const RunResult* r : runs) {
-        values.push_back(r->sweep_values);
+        values.push_back(r->point.values);
         labels.push_back(label_of(*r));
     }
     const auto unmatched = unmatched_targets(desc, values, labels);

@@ -54,7 +54,7 @@ ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<
     j["huge_pages"] = huge_pages_summary();  // RTCSIM_HUGE_PAGES and, under auto, the probe's choice
     j["config_file"] = run.config.file;
     j["repriced"] = run.repriced;  // priced from the previous sweep point's trace
-    j["effective_config"] = run_config_to_json(run.config);
+    j["effective_config"] = run_config_to_json(run.config, run.point.config);
     ojson cost = ojson::array();
     for (std::size_t i = 0; i < run.config.cost_presets.size(); ++i) {
         ojson p = preset_json(run.config.cost_presets[i]);

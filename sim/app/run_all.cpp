@@ -6,6 +6,7 @@
 #include "sim/calibrate/calibrate_report.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
+#include "sim/util/paths.h"
 #include "sim/config/run_config.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
@@ -61,6 +62,29 @@ void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
 
 }  // namespace
 
+double sweep_point_count(const nlohmann::json& config, const std::string& file, const WorkLimits& limits) {
+    if (!config.is_object() || !config.contains("sweep")) return 1.0;
+    const nlohmann::json& sweep = config["sweep"];
+    const JsonReader r(sweep, file, "/sweep");
+    r.require_object();
+    double points = 1.0;
+    std::string largest;
+    std::size_t largest_size = 0;
+    for (const auto& [key, values] : sweep.items()) {
+        if (!values.is_array() || values.empty())
+            r.fail(key, "expected a non-empty list of values, got " + describe(values));
+        points *= static_cast<double>(values.size());  // doubles: no wrap, at worst inf
+        if (values.size() > largest_size) {
+            largest_size = values.size();
+            largest = key;
+        }
+    }
+    if (points > limits.max_sweep_points && !limits.force)
+        r.fail(largest, "the sweep has " + count_text(points) + " points, more than " +
+                            count_text(limits.max_sweep_points) + " (pass --force to run it anyway)");
+    return points;
+}
+
 RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vector<std::string>& sets,
                   const WorkLimits& limits, const std::vector<std::string>& sweep_order) {
     if (!config.is_object()) throw InputError(file + ": /: expected a JSON object");
@@ -70,11 +94,36 @@ RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vec
     for (const std::string& s : sets) apply_set(config, s, file);
     (void)sweep_point_count(config, file, limits);  // before expanding it
     plan.points = expand_sweep(config, file, sweep_order);
-    // Parse every point before any work, so a bad value fails in a second.
+    // Every point parsed, its scene checked and its presets loaded (each file
+    // once) before any work, so a bad value fails in a second; every point's
+    // errors are reported, not only the first point's.
+    std::vector<std::string> errors;
+    const auto note = [&](const InputError& e) {
+        if (std::find(errors.begin(), errors.end(), e.what()) == errors.end()) errors.emplace_back(e.what());
+    };
+    PresetCache presets;
     std::vector<WorkEstimate> estimates;
     for (const SweepPoint& p : plan.points) {
-        plan.parsed.push_back(parse_run_config(p.config, file));
-        estimates.push_back(estimate_config_work(plan.parsed.back()));
+        try {
+            plan.parsed.push_back(parse_run_config(p.config, file, &presets));
+            estimates.push_back(estimate_config_work(plan.parsed.back()));
+        } catch (const InputError& e) {
+            note(e);
+        }
+    }
+    if (config.contains("calibrate")) {
+        try {
+            plan.calibrate = parse_calibrate(JsonReader(config, file).child("calibrate"));
+            if (!plan.calibrate->start.empty())  // found and valid before the runs the fit needs
+                (void)load_cost_model(resolve_preset(plan.calibrate->start, file, "/calibrate/start"));
+        } catch (const InputError& e) {
+            note(e);
+        }
+    }
+    if (!errors.empty()) {
+        std::string all;
+        for (const std::string& e : errors) all += (all.empty() ? "" : "\n") + e;
+        throw InputError(all);
     }
     plan.work = combine_work(estimates);
     check_work(plan.work, limits, file);
@@ -84,20 +133,22 @@ RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vec
 
 RunResult run_point(const RunPlan& plan, std::size_t i, RunContext context) {
     context.limits = plan.limits;
-    RunResult r = run_simulation(plan.parsed.at(i), plan.points.at(i).config, context);
-    r.sweep_values = plan.points[i].values;
+    RunResult r = run_simulation(plan.parsed.at(i), context);
+    r.point.config = plan.points[i].config;
+    r.point.values = plan.points[i].values;
     r.sweep_label = plan.points[i].label;
-    r.provenance = provenance_json(r, context.threads, plan.command_line);
+    r.point.provenance = provenance_json(r, context.threads, plan.command_line);
     return r;
 }
 
 std::optional<RunResult> reprice_point(const RunPlan& plan, std::size_t i, const RunResult& traced,
                                        unsigned threads) {
-    std::optional<RunResult> r = reprice_run(traced, plan.parsed.at(i), plan.points.at(i).config);
+    std::optional<RunResult> r = reprice_run(traced, plan.parsed.at(i));
     if (!r) return r;
-    r->sweep_values = plan.points[i].values;
+    r->point.config = plan.points[i].config;
+    r->point.values = plan.points[i].values;
     r->sweep_label = plan.points[i].label;
-    r->provenance = provenance_json(*r, threads, plan.command_line);
+    r->point.provenance = provenance_json(*r, threads, plan.command_line);
     return r;
 }
 

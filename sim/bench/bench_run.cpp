@@ -83,7 +83,7 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     const auto t_load = std::chrono::steady_clock::now();
     Geometry geometry;
     {
-        const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
+        const Scene scene = load_scene(c.scene);
         geometry = make_geometry(scene, c.kind, c.subdivision);
     }  // the strands go now: the scale case needs the memory
     out.load_seconds = seconds_since(t_load);

@@ -53,11 +53,11 @@ ojson workload_to_json(const WorkloadDesc& w) {
     return j;
 }
 
-ojson run_config_to_json(const RunConfig& c) {
+ojson run_config_to_json(const RunConfig& c, const nlohmann::json& given) {
     ojson j;
     j["name"] = c.name;
     j["description"] = c.description;
-    j["scene"] = c.scene;
+    j["scene"] = given.is_object() && given.contains("scene") ? given["scene"] : nlohmann::json();
     j["primitives"] = {{"kind", std::string(kind_name(c.kind))},
                        {"subdivision", c.subdivision},
                        {"obb", std::string(obb_variant_name(c.build.obb))}};
@@ -79,7 +79,8 @@ ojson run_config_to_json(const RunConfig& c) {
     j["workload"] = workload_to_json(c.workload);
     j["output"] = {{"images", c.output.images}, {"rays", c.output.write_rays}, {"hits", c.output.write_hits}};
     j["uncertainty"] = {{"draws", c.uncertainty.draws}, {"seed", c.uncertainty.seed}};
-    if (!c.calibrate.is_null()) j["calibrate"] = c.calibrate;
+    if (given.is_object() && given.contains("calibrate") && !given["calibrate"].is_null())
+        j["calibrate"] = given["calibrate"];
     if (!c.break_even.empty()) {
         ojson list = ojson::array();
         for (const BreakEvenSpec& b : c.break_even)

@@ -3,14 +3,12 @@
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <filesystem>
 
 namespace rtc {
-
-std::string resolve_config_path(const std::string& path, const std::string& file) {
-    return config_relative_path(path, file);
-}
 
 namespace {
 
@@ -39,9 +37,50 @@ BreakEvenAxis read_axis(const JsonReader& r) {
     return a;
 }
 
+template <class Model>
+std::shared_ptr<const Model> load_once(std::map<std::string, std::shared_ptr<const Model>>& cache,
+                                       const std::string& path, Model (*load)(const std::string&)) {
+    auto& slot = cache[path];
+    if (!slot) slot = std::make_shared<const Model>(load(path));
+    return slot;
+}
+
+// The presets loaded, and what they must agree on: one traced frame serves
+// every preset, so warp presets must group rays alike, and a break-even map
+// names one of them and sweeps events it prices.
+void load_presets(RunConfig& c, PresetCache& cache) {
+    for (const std::string& p : c.cost_presets) c.costs.push_back(load_once(cache.costs, p, &load_cost_model));
+    c.memory = load_once(cache.memory, c.memory_preset, &load_memory_model);
+    const CostModel* first_warp = nullptr;
+    for (std::size_t p = 0; p < c.costs.size(); ++p) {
+        const CostModel& cost = *c.costs[p];
+        if (!cost.execution.warp()) continue;
+        if (!first_warp) first_warp = &cost;
+        if (!first_warp->execution.same_grouping(cost.execution))
+            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
+                             " groups rays into other warps (warp_width, tile) than " + c.costs[0]->name +
+                             "; presets of one run must share them");
+    }
+    for (const BreakEvenSpec& spec : c.break_even) {
+        const CostModel* base = nullptr;
+        for (const auto& m : c.costs)
+            if (m->name == spec.preset) base = m.get();
+        if (!base)
+            throw InputError(c.file + ": /break_even: preset \"" + spec.preset +
+                             "\" is not one of the run's cost presets");
+        // An axis over an event the preset does not price (a program by name
+        // under operation-class pricing) would add its cost on top of the
+        // operations that already price that program.
+        for (const BreakEvenAxis* axis : {&spec.x, &spec.y})
+            for (const Event e : axis->events)
+                if (!base->prices(e))
+                    throw InputError(c.file + ": /break_even: map \"" + spec.name + "\": " + base->unpriced(e));
+    }
+}
+
 }  // namespace
 
-RunConfig parse_run_config(const nlohmann::json& config, const std::string& file) {
+RunConfig parse_run_config(const nlohmann::json& config, const std::string& file, PresetCache* presets) {
     const JsonReader r(config, file);
     r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
                   "cluster", "cost", "memory", "workload", "output", "uncertainty", "calibrate", "break_even"});
@@ -50,7 +89,7 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
     c.name = r.string("name", std::filesystem::path(file).stem().string());
     c.description = r.string("description", "");
     if (!r.has("scene")) r.fail("scene", "missing (every config names a scene)");
-    c.scene = config["scene"];
+    c.scene = parse_scene(JsonReader(config["scene"], file, "/scene"));
 
     if (r.has("primitives")) {
         const JsonReader p = r.child("primitives");
@@ -152,7 +191,6 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         c.uncertainty.draws = static_cast<int>(u.integer("draws", 64, 0, 4096));
         c.uncertainty.seed = static_cast<std::uint64_t>(u.integer("seed", 1, 0, 1LL << 53));
     }
-    if (r.has("calibrate")) c.calibrate = config["calibrate"];
     if (r.has("break_even")) {
         const nlohmann::json& list = config["break_even"];
         if (!list.is_array()) r.fail("break_even", "expected a list of maps");
@@ -180,6 +218,8 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
             c.break_even.push_back(std::move(spec));
         }
     }
+    PresetCache local;
+    load_presets(c, presets ? *presets : local);
     return c;
 }
 

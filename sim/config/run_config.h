@@ -1,14 +1,21 @@
-// A `simulate` config, typed. Every field has its default here; parsing
-// (run_config.cpp) rejects unknown keys and bad values with the JSON path.
-// Key reference: configs/README.md.
+// A `simulate` config, typed: one sweep point's plan. Every field has its
+// default here; parsing (run_config.cpp) rejects unknown keys and bad values
+// with the JSON path, resolves every path (absolute), loads and checks the
+// presets, so a run needs nothing but this. Key reference: configs/README.md.
 #pragma once
 
-#include "sim/methods/method.h"
+#include "sim/config/scene_config.h"
 #include "sim/config/workload_config.h"
+#include "sim/hardware/cost_model.h"
+#include "sim/hardware/memory_model.h"
+#include "sim/methods/method.h"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,7 +56,7 @@ struct RunConfig {
     std::string file;                 // where the config came from (for messages)
     std::string name;                 // default: the config file's stem
     std::string description;
-    nlohmann::json scene;             // the `scene` block, read by load_scene
+    SceneDesc scene;                  // the `scene` block, checked (load_scene makes the Scene)
     PrimitiveKind kind = PrimitiveKind::Capsule;
     int subdivision = 1;              // phantom pre-subdivision: 1, 2, 4 or 8
     std::vector<std::string> methods{"ref", "obb"};  // registered names (sim/methods/registry.cpp)
@@ -57,21 +64,27 @@ struct RunConfig {
     MethodOptions build;              // widths, bins, leaf sizes, OBB variant
     TraceOptions trace;               // IS schedule, phantom early-out
     // Preset names or paths as given; parse_run_config resolves them into files
-    // (sim/util/paths.h: names are searched in the preset directories).
+    // (sim/util/paths.h: names are searched in the preset directories) and
+    // loads them into `costs` and `memory`.
     std::vector<std::string> cost_presets{"turing-calibrated"};  // first = primary; the best evidence by default
     std::string memory_preset = "memory-optix7";
+    std::vector<std::shared_ptr<const CostModel>> costs;  // per cost preset, loaded and checked
+    std::shared_ptr<const MemoryModel> memory;
     WorkloadDesc workload;
     OutputOptions output;
     UncertaintyOptions uncertainty;
-    nlohmann::json calibrate;         // optional `calibrate` block (null when absent)
     std::vector<BreakEvenSpec> break_even;  // optional `break_even` list
 };
 
-// Parses one (sweep-expanded) config. Throws InputError "<file>: <path>: ...".
-[[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file);
+// Presets loaded once per file, shared by the points of a plan.
+struct PresetCache {
+    std::map<std::string, std::shared_ptr<const CostModel>> costs;
+    std::map<std::string, std::shared_ptr<const MemoryModel>> memory;
+};
 
-// Resolves a path from a config: as given if absolute, else relative to the
-// config file's directory (never the working directory).
-[[nodiscard]] std::string resolve_config_path(const std::string& path, const std::string& file);
+// Parses one (sweep-expanded) config and loads its presets (from `presets`
+// when already loaded there). Throws InputError "<file>: <path>: ...".
+[[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file,
+                                         PresetCache* presets = nullptr);
 
 }  // namespace rtc

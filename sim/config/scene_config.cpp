@@ -3,10 +3,6 @@
 // own std::invalid_argument checks never fire on config input.
 #include "sim/config/scene_config.h"
 
-#include "scenes/generators/bundle.h"
-#include "scenes/generators/follow_hairs.h"
-#include "scenes/generators/hair_gen.h"
-#include "scenes/loaders/loaders.h"
 #include "sim/util/paths.h"
 
 #include <cmath>
@@ -22,9 +18,31 @@ Vec3 to_vec3(const std::array<double, 3>& a) {
     return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2])};
 }
 
-Scene bundle_scene(const JsonReader& j) {
+// As JsonReader::fail, for a key read when the config was planned.
+[[noreturn]] void fail_at(const SceneDesc& d, const std::string& key, const std::string& problem) {
+    throw InputError(d.file + ": " + key + ": " + problem);
+}
+
+DataPath data_path(const JsonReader& block, std::string_view key) {
+    const std::string given = block.string(key, std::nullopt);
+    if (given.empty()) block.fail(key, "empty path");
+    DataPath p;
+    p.key = block.key_path(key);
+    p.shown = config_relative_path(given, block.file());
+    std::error_code ec;  // a symlink loop or an over-long name: an error naming the key, not a filesystem_error
+    const bool exists = std::filesystem::exists(p.shown, ec);
+    if (ec) block.fail(key, "cannot access " + p.shown + " (" + ec.message() + ")");
+    if (!exists)
+        block.fail(key, "no such file: " + p.shown +
+                            (std::filesystem::path(given).is_absolute() ? "" : " (paths are relative to the config file)"));
+    const std::filesystem::path abs = std::filesystem::absolute(p.shown, ec);
+    p.path = ec ? std::filesystem::path(p.shown) : abs.lexically_normal();
+    return p;
+}
+
+void parse_bundle(const JsonReader& j, SceneDesc& s) {
     j.allow_only({"type", "name", "count", "radius", "tilt_deg", "seed", "bundle_radius", "length"});
-    BundleDesc d;
+    BundleDesc& d = s.bundle;
     d.count = static_cast<std::uint32_t>(j.integer("count", d.count, 1, kMaxCount));
     d.bundle_radius = j.length("bundle_radius", d.bundle_radius);
     d.radius = j.length("radius", d.radius);
@@ -33,17 +51,14 @@ Scene bundle_scene(const JsonReader& j) {
     d.tilt_deg = static_cast<float>(j.number("tilt_deg", d.tilt_deg, -360.0, 360.0));
     d.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
     d.length = j.length("length", d.length);
-    Scene s = make_bundle(d);
-    if (j.has("name")) s.name = j.string("name", std::nullopt);
-    return s;
 }
 
-Scene hair_scene(const JsonReader& j) {
+void parse_hair(const JsonReader& j, SceneDesc& s) {
     j.allow_only({"type", "name", "emitter", "sphere_radius", "sphere_center", "mesh", "lock_center",
                   "lock_radius", "lock_axis", "style", "strands", "points_per_strand", "length", "radius",
                   "tip_radius", "lean", "wave_amplitude", "waves", "curl_radius", "curl_turns", "seed",
                   "with_mesh"});
-    HairDesc d;
+    HairDesc& d = s.hair;
     const std::string emitter = j.choice("emitter", "sphere", {"sphere", "mesh", "lock"});
     d.emitter = emitter == "sphere" ? HairEmitter::Sphere : emitter == "mesh" ? HairEmitter::Mesh : HairEmitter::Lock;
     // Each emitter's own keys only with that emitter.
@@ -78,50 +93,71 @@ Scene hair_scene(const JsonReader& j) {
     d.seed = static_cast<std::uint64_t>(j.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
     d.with_mesh = j.boolean("with_mesh", d.with_mesh);
     if (d.with_mesh && d.emitter == HairEmitter::Lock) j.fail("with_mesh", "a lock has no emitter mesh");
-    Scene s;
-    if (d.emitter != HairEmitter::Mesh) {
-        s = make_hair(d);
-    } else {
-        const std::filesystem::path path = resolve_data_path(j, "mesh");
-        const ObjContents obj = load_obj(path);
-        if (obj.mesh.triangles.empty()) j.fail("mesh", "no faces in " + path.string());
-        s = make_hair_on_mesh(d, obj.mesh);
-    }
-    if (j.has("name")) s.name = j.string("name", std::nullopt);
-    return s;
+    if (d.emitter == HairEmitter::Mesh) s.hair_mesh = data_path(j, "mesh");
 }
 
-Strands curves_from_file(const JsonReader& c) {
+CurveFileDesc parse_curves(const JsonReader& c) {
     c.allow_only({"path", "format", "radius", "radius_scale", "follow_hairs", "follow_spread",
                   "follow_tip_separation", "follow_seed"});
-    const std::string format_name =
-        c.choice("format", "auto", {"auto", "hair", "tfx", "trk", "swc", "obj", "txt", "pbrt"});
-    const std::filesystem::path path = resolve_data_path(c, "path");
-    LoadedCurves loaded = load_curves(path, *curve_format_from_name(format_name));
-    if (loaded.strands.strand_count() == 0) c.fail("path", "no strands in " + path.string());
-    const double scale = c.positive("radius_scale", 1.0);
-    if (c.has("radius")) {
-        const float r = c.length("radius", std::nullopt);
-        loaded.strands.radii.assign(loaded.strands.radii.size(), r);
+    CurveFileDesc d;
+    d.key = c.path();
+    d.format = *curve_format_from_name(
+        c.choice("format", "auto", {"auto", "hair", "tfx", "trk", "swc", "obj", "txt", "pbrt"}));
+    d.path = data_path(c, "path");
+    d.radius_scale = c.positive("radius_scale", 1.0);
+    if (c.has("radius")) d.radius = c.length("radius", std::nullopt);
+    d.follow.per_guide = static_cast<std::uint32_t>(c.integer("follow_hairs", 0, 0, 64));
+    if (d.follow.per_guide > 0) {
+        d.follow.spread = c.length("follow_spread", std::nullopt);
+        d.follow.tip_separation = static_cast<float>(c.number("follow_tip_separation", 1.0, 0.0, 1e6));
+        d.follow.seed = static_cast<std::uint64_t>(c.integer("follow_seed", 1, 0, std::numeric_limits<long long>::max()));
+    } else {
+        for (const char* key : {"follow_spread", "follow_tip_separation", "follow_seed"})
+            if (c.has(key)) c.fail(key, "only with \"follow_hairs\" > 0");
+    }
+    return d;
+}
+
+void parse_file(const JsonReader& j, SceneDesc& s) {
+    j.allow_only({"type", "name", "curves", "mesh"});
+    if (!j.has("curves") && !j.has("mesh")) j.fail("", "a file scene needs \"curves\", \"mesh\" or both");
+    if (j.has("curves") && j.json()["curves"].is_array()) {
+        // Several curve files (e.g. one SWC per neuron) form one scene.
+        const nlohmann::json& list = j.json()["curves"];
+        if (list.empty()) j.fail("curves", "expected a curve object or a non-empty list of them");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const JsonReader c(list[i], j.file(), j.key_path("curves") + "/" + std::to_string(i));
+            c.require_object();
+            s.curves.push_back(parse_curves(c));
+        }
+        s.curve_list = true;
+    } else if (j.has("curves")) {
+        s.curves.push_back(parse_curves(j.child("curves")));
+    }
+    if (j.has("mesh")) {
+        const JsonReader m = j.child("mesh");
+        m.allow_only({"path", "format"});
+        MeshFileDesc mesh;
+        mesh.format = *mesh_format_from_name(m.choice("format", "auto", {"auto", "obj", "gltf", "glb", "ply", "pbrt"}));
+        mesh.path = data_path(m, "path");
+        s.mesh = std::move(mesh);
+    }
+}
+
+Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c) {
+    LoadedCurves loaded = load_curves(c.path.path, c.format);
+    if (loaded.strands.strand_count() == 0) fail_at(s, c.path.key, "no strands in " + c.path.shown);
+    if (c.radius) {
+        loaded.strands.radii.assign(loaded.strands.radii.size(), *c.radius);
     } else if (!loaded.has_radius) {
-        c.fail("radius", "missing: " + path.string() + " carries no radius, so one must be set");
+        fail_at(s, c.key + "/radius", "missing: " + c.path.shown + " carries no radius, so one must be set");
     }
     for (float& r : loaded.strands.radii) {
-        r = static_cast<float>(r * scale);
+        r = static_cast<float>(r * c.radius_scale);
         if (!(r <= JsonReader::kMaxLength))
-            c.fail("radius_scale", describe(scale) + " makes a radius exceed 1e18");
+            fail_at(s, c.key + "/radius_scale", describe(c.radius_scale) + " makes a radius exceed 1e18");
     }
-
-    FollowHairDesc f;
-    f.per_guide = static_cast<std::uint32_t>(c.integer("follow_hairs", 0, 0, 64));
-    if (f.per_guide > 0) {
-        f.spread = c.length("follow_spread", std::nullopt);
-        f.tip_separation = static_cast<float>(c.number("follow_tip_separation", 1.0, 0.0, 1e6));
-        f.seed = static_cast<std::uint64_t>(c.integer("follow_seed", 1, 0, std::numeric_limits<long long>::max()));
-        return add_follow_hairs(loaded.strands, f);
-    }
-    for (const char* key : {"follow_spread", "follow_tip_separation", "follow_seed"})
-        if (c.has(key)) c.fail(key, "only with \"follow_hairs\" > 0");
+    if (c.follow.per_guide > 0) return add_follow_hairs(loaded.strands, c.follow);
     return std::move(loaded.strands);
 }
 
@@ -132,57 +168,64 @@ void append_strands(Strands& into, const Strands& more) {
     for (std::size_t i = 1; i < more.offsets.size(); ++i) into.offsets.push_back(base + more.offsets[i]);
 }
 
-Scene file_scene(const JsonReader& j) {
-    j.allow_only({"type", "name", "curves", "mesh"});
-    if (!j.has("curves") && !j.has("mesh")) j.fail("", "a file scene needs \"curves\", \"mesh\" or both");
+Scene file_scene(const SceneDesc& d) {
     Scene s;
-    if (j.has("curves") && j.json()["curves"].is_array()) {
-        // Several curve files (e.g. one SWC per neuron) form one scene.
-        const nlohmann::json& list = j.json()["curves"];
-        if (list.empty()) j.fail("curves", "expected a curve object or a non-empty list of them");
-        for (std::size_t i = 0; i < list.size(); ++i) {
-            const JsonReader c(list[i], j.file(), j.key_path("curves") + "/" + std::to_string(i));
-            c.require_object();
-            append_strands(s.strands, curves_from_file(c));
-        }
-        s.name = j.key_path("curves");
-    } else if (j.has("curves")) {
-        const JsonReader c = j.child("curves");
-        s.strands = curves_from_file(c);
-        s.name = c.string("path", std::nullopt);
+    if (d.curve_list) {
+        for (const CurveFileDesc& c : d.curves) append_strands(s.strands, load_curve_file(d, c));
+        s.name = d.key + "/curves";
+    } else if (!d.curves.empty()) {
+        s.strands = load_curve_file(d, d.curves.front());
+        s.name = d.curves.front().path.shown;
     }
-    if (j.has("mesh")) {
-        const JsonReader m = j.child("mesh");
-        m.allow_only({"path", "format"});
-        const std::string format = m.choice("format", "auto", {"auto", "obj", "gltf", "glb", "ply", "pbrt"});
-        const std::filesystem::path path = resolve_data_path(m, "path");
-        s.mesh = load_mesh(path, *mesh_format_from_name(format));
-        if (s.mesh.triangles.empty()) m.fail("path", "no faces in " + path.string());
-        if (s.name.empty()) s.name = path.string();
+    if (d.mesh) {
+        s.mesh = load_mesh(d.mesh->path.path, d.mesh->format);
+        if (s.mesh.triangles.empty()) fail_at(d, d.mesh->path.key, "no faces in " + d.mesh->path.shown);
+        if (s.name.empty()) s.name = d.mesh->path.shown;
     }
-    if (j.has("name")) s.name = j.string("name", std::nullopt);
     return s;
 }
 
 }  // namespace
 
-std::filesystem::path resolve_data_path(const JsonReader& block, std::string_view key) {
-    const std::string given = block.string(key, std::nullopt);
-    if (given.empty()) block.fail(key, "empty path");
-    const std::filesystem::path path = config_relative_path(given, block.file());
-    std::error_code ec;  // a symlink loop or an over-long name: an error naming the key, not a filesystem_error
-    if (std::filesystem::exists(path, ec)) return path;
-    if (ec) block.fail(key, "cannot access " + path.string() + " (" + ec.message() + ")");
-    block.fail(key, "no such file: " + path.string() +
-                        (std::filesystem::path(given).is_absolute() ? "" : " (paths are relative to the config file)"));
+SceneDesc parse_scene(const JsonReader& j) {
+    j.require_object();
+    SceneDesc s;
+    s.file = j.file();
+    s.key = j.path();
+    const std::string type = j.choice("type", std::nullopt, {"bundle", "hair", "file"});
+    if (type == "bundle") {
+        s.type = SceneType::Bundle;
+        parse_bundle(j, s);
+    } else if (type == "hair") {
+        s.type = SceneType::Hair;
+        parse_hair(j, s);
+    } else {
+        s.type = SceneType::File;
+        parse_file(j, s);
+    }
+    if (j.has("name")) s.name = j.string("name", std::nullopt);
+    return s;
 }
 
-Scene load_scene(const JsonReader& j) {
-    j.require_object();
-    const std::string type = j.choice("type", std::nullopt, {"bundle", "hair", "file"});
-    if (type == "bundle") return bundle_scene(j);
-    if (type == "hair") return hair_scene(j);
-    return file_scene(j);
+Scene load_scene(const SceneDesc& d) {
+    Scene s;
+    switch (d.type) {
+        case SceneType::Bundle: s = make_bundle(d.bundle); break;
+        case SceneType::Hair:
+            if (!d.hair_mesh) {
+                s = make_hair(d.hair);
+            } else {
+                const ObjContents obj = load_obj(d.hair_mesh->path);
+                if (obj.mesh.triangles.empty()) fail_at(d, d.hair_mesh->key, "no faces in " + d.hair_mesh->shown);
+                s = make_hair_on_mesh(d.hair, obj.mesh);
+            }
+            break;
+        case SceneType::File: s = file_scene(d); break;
+    }
+    if (d.name) s.name = *d.name;
+    return s;
 }
+
+Scene load_scene(const JsonReader& scene_block) { return load_scene(parse_scene(scene_block)); }
 
 }  // namespace rtc

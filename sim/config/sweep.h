@@ -35,6 +35,11 @@ struct SweepPoint {
 [[nodiscard]] std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::string& file,
                                                    const std::vector<std::string>& key_order = {});
 
+// True when two (sweep-expanded) configs trace the same rays through the same
+// structures: they differ at most in the pricing-only keys `cost` and
+// `memory` (and `name`/`description`).
+[[nodiscard]] bool same_trace(const nlohmann::json& a, const nlohmann::json& b);
+
 // The sweep keys in the order they are written: in the config text, then as
 // `--set` overrides change them (`--set sweep={...}` replaces the order,
 // `--set sweep.key=[...]` appends a new key). Empty when the text is not

@@ -127,7 +127,12 @@ WorkloadDesc parse_workload(const JsonReader& r) {
                "rays");
         const std::string file = r.string("rays_file", std::nullopt);
         if (file.empty()) r.fail("rays_file", "expected a non-empty path");
-        d.rays_file = config_relative_path(file, r.file());
+        // Absolute, so a run opens the file the config names from any working
+        // directory, and nothing resolves it again.
+        const std::string path = config_relative_path(file, r.file());
+        std::error_code ec;
+        const std::filesystem::path abs = std::filesystem::absolute(path, ec);
+        d.rays_file = ec ? path : abs.lexically_normal().string();
         return d;
     }
     if (r.has("rays_file")) r.fail("rays_file", "only for workload type \"rays\"");

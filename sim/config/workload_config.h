@@ -44,7 +44,7 @@ struct WorkloadDesc {
     Vec3 triangle_albedo{0.8f};  // type camera: triangles (mesh)
     Environment environment{};   // constant 1 (white sky)
     bool russian_roulette = false;
-    std::string rays_file;  // type rays: resolved against the config file's directory
+    std::string rays_file;  // type rays: absolute (given relative to the config file's directory)
 };
 
 // Parses the workload object that `r` points at (e.g. path "/workload").

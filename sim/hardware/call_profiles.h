@@ -23,18 +23,8 @@
 namespace rtc {
 
 // Program events (event unit Program) and their slots in ProgramCounts.
-inline constexpr std::size_t kProgramEventCount = [] {
-    std::size_t n = 0;
-    for (const EventUnit u : kEventUnits) n += u == EventUnit::Program;
-    return n;
-}();
-inline constexpr auto kProgramEvents = [] {
-    std::array<std::uint8_t, kProgramEventCount> e{};
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < kEventCount; ++i)
-        if (kEventUnits[i] == EventUnit::Program) e[k++] = static_cast<std::uint8_t>(i);
-    return e;
-}();
+inline constexpr auto kProgramEvents = events_of_unit<EventUnit::Program>();
+inline constexpr std::size_t kProgramEventCount = kProgramEvents.size();
 inline constexpr auto kProgramSlot = [] {  // event -> slot (0xFF: not a program event)
     std::array<std::uint8_t, kEventCount> s{};
     for (auto& x : s) x = 0xFF;

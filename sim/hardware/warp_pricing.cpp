@@ -8,22 +8,9 @@ namespace rtc {
 namespace {
 
 // The events of each unit, as index lists (no per-event branch when pricing).
-template <EventUnit U>
-constexpr auto events_of() {
-    constexpr std::size_t n = [] {
-        std::size_t k = 0;
-        for (const EventUnit u : kEventUnits) k += u == U;
-        return k;
-    }();
-    std::array<std::uint8_t, n> idx{};
-    std::size_t k = 0;
-    for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] == U) idx[k++] = static_cast<std::uint8_t>(e);
-    return idx;
-}
-constexpr auto kShaderEvents = events_of<EventUnit::Shader>();
-constexpr auto kRtEvents = events_of<EventUnit::RtUnit>();
-constexpr auto kHandOffEvents = events_of<EventUnit::HandOff>();
+constexpr auto kShaderEvents = events_of_unit<EventUnit::Shader>();
+constexpr auto kRtEvents = events_of_unit<EventUnit::RtUnit>();
+constexpr auto kHandOffEvents = events_of_unit<EventUnit::HandOff>();
 
 template <class List>
 double price_of(const RayCounts& c, const CostModel& m, const List& events) {

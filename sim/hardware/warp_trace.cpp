@@ -9,21 +9,8 @@ namespace rtc {
 namespace {
 
 // The events a lane record keeps: every event outside intersection programs.
-constexpr std::size_t count_lane_events() {
-    std::size_t n = 0;
-    for (const EventUnit u : kEventUnits) n += u != EventUnit::Program;
-    return n;
-}
-constexpr std::size_t kLaneEvents = count_lane_events();
-
-constexpr std::array<std::uint8_t, kLaneEvents> lane_event_index() {
-    std::array<std::uint8_t, kLaneEvents> idx{};
-    std::size_t k = 0;
-    for (std::size_t e = 0; e < kEventCount; ++e)
-        if (kEventUnits[e] != EventUnit::Program) idx[k++] = static_cast<std::uint8_t>(e);
-    return idx;
-}
-constexpr auto kLaneEventIndex = lane_event_index();
+constexpr auto kLaneEventIndex = events_of_unit<EventUnit::Program, /*Others=*/true>();
+constexpr std::size_t kLaneEvents = kLaneEventIndex.size();
 
 }  // namespace
 

@@ -151,10 +151,10 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["rtcsim_version"] = kVersion;
     j["name"] = run.config.name;
     if (!run.sweep_label.empty()) {
-        j["sweep_point"] = run.sweep_values;
+        j["sweep_point"] = run.point.values;
         j["sweep_label"] = run.sweep_label;
     }
-    j["config"] = run.effective_config;
+    j["config"] = run.point.config;
     const SceneStats& s = run.scene;
     j["scene"] = scene_stats_json(s);
     j["scene"]["primitive_kind"] = std::string(kind_name(run.config.kind));
@@ -213,7 +213,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
                          {"total", run.total_seconds}};
-    if (!run.provenance.is_null()) j["provenance"] = run.provenance;  // set by sim/app (provenance.h)
+    if (!run.point.provenance.is_null()) j["provenance"] = run.point.provenance;  // set by sim/app (provenance.h)
     return j;
 }
 

@@ -66,7 +66,7 @@ void flatten(const std::string& path, const nlohmann::json& v, std::vector<std::
 
 std::vector<std::pair<std::string, nlohmann::json>> flat_values(const RunResult& r) {
     std::vector<std::pair<std::string, nlohmann::json>> out;
-    for (const auto& [k, v] : r.sweep_values.items()) flatten(k, v, out);
+    for (const auto& [k, v] : r.point.values.items()) flatten(k, v, out);
     return out;
 }
 
@@ -167,7 +167,7 @@ nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
     j["name"] = runs.empty() ? "" : runs.front().config.name;
     nlohmann::ordered_json axes = nlohmann::ordered_json::array();
     for (const RunResult& r : runs)
-        for (const auto& [k, v] : r.sweep_values.items())
+        for (const auto& [k, v] : r.point.values.items())
             if (std::find(axes.begin(), axes.end(), k) == axes.end()) axes.push_back(k);
     j["axes"] = axes;
     j["points"] = nlohmann::ordered_json::array();
@@ -175,7 +175,7 @@ nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
         nlohmann::ordered_json p;
         p["index"] = i;
         p["label"] = runs[i].sweep_label;
-        p["values"] = runs[i].sweep_values;
+        p["values"] = runs[i].point.values;
         p["dir"] = i < point_dirs.size() ? point_dirs[i] : "";
         p["report"] = report_json(runs[i]);
         j["points"].push_back(std::move(p));

@@ -47,7 +47,7 @@ std::vector<json> tuples(const std::vector<RunResult>& runs, const std::vector<s
     std::vector<json> out;
     for (const RunResult& r : runs) {
         json t = json::array();
-        for (const std::string& k : keys) t.push_back(r.sweep_values.contains(k) ? r.sweep_values[k] : json());
+        for (const std::string& k : keys) t.push_back(r.point.values.contains(k) ? r.point.values[k] : json());
         if (std::find(out.begin(), out.end(), t) == out.end()) out.push_back(std::move(t));
     }
     return out;
@@ -69,7 +69,7 @@ struct SweepAxis {
 
     std::size_t index_of(const RunResult& r) const {
         json t = json::array();
-        for (const std::string& k : keys) t.push_back(r.sweep_values.contains(k) ? r.sweep_values[k] : json());
+        for (const std::string& k : keys) t.push_back(r.point.values.contains(k) ? r.point.values[k] : json());
         return static_cast<std::size_t>(std::find(values.begin(), values.end(), t) - values.begin());
     }
 };
@@ -137,7 +137,7 @@ SweepAxis make_axis(std::vector<std::string> keys, const std::vector<RunResult>&
 std::vector<SweepAxis> sweep_axes(const std::vector<RunResult>& runs) {
     std::vector<std::vector<std::string>> groups;
     for (const RunResult& r : runs)
-        for (const auto& item : r.sweep_values.items()) {
+        for (const auto& item : r.point.values.items()) {
             const std::string key = item.key();  // (clang 14 cannot capture a structured binding)
             if (std::none_of(groups.begin(), groups.end(), [&](const auto& g) { return g[0] == key; }))
                 groups.push_back({key});

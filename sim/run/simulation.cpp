@@ -1,10 +1,6 @@
 #include "sim/run/simulation.h"
 
-#include "core/input_error.h"
-
-#include "sim/util/json_reader.h"
 #include "sim/workload/ray_file.h"
-#include "sim/config/scene_config.h"
 
 #include <algorithm>
 #include <chrono>
@@ -22,11 +18,11 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::string& config_file) {
+RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds) {
     RayWorkload f;
     if (w.type == WorkloadType::Rays) {
         f.from_camera = false;
-        f.rays = read_ray_file(resolve_config_path(w.rays_file, config_file));
+        f.rays = read_ray_file(w.rays_file);  // resolved when the config was parsed
         return f;
     }
     f.camera = make_camera(w, bounds);
@@ -34,23 +30,20 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds, const std::str
     return f;
 }
 
-// Loads the cost and memory presets into `r`; returns, per cost preset, its
-// index among the warp presets (SIZE_MAX for per-ray presets).
-std::vector<std::size_t> load_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
+// The config's cost and memory presets (loaded and checked when it was
+// parsed) into `r`; returns, per cost preset, its index among the warp
+// presets (SIZE_MAX for per-ray presets). The warp presets group rays alike
+// (parse_run_config checked it): the first one's grouping serves them all.
+std::vector<std::size_t> take_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
     r.costs.clear();
-    for (const std::string& p : c.cost_presets) r.costs.push_back(load_cost_model(p));
-    r.memory = load_memory_model(c.memory_preset);
+    for (const auto& cost : c.costs) r.costs.push_back(*cost);
+    r.memory = *c.memory;
     r.warp_grouping.reset();
-    // One traced frame serves every preset, so warp presets must group rays alike.
     std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
     for (std::size_t p = 0; p < r.costs.size(); ++p) {
         const CostModel& cost = r.costs[p];
         if (!cost.execution.warp()) continue;
         if (!r.warp_grouping) r.warp_grouping = cost.execution;
-        if (!r.warp_grouping->same_grouping(cost.execution))
-            throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
-                             " groups rays into other warps (warp_width, tile) than " + r.costs[0].name +
-                             "; presets of one run must share them");
         warp_index[p] = warp_presets.size();
         warp_presets.push_back(&cost);
     }
@@ -161,18 +154,16 @@ double RunResult::memory_overhead_percent(std::string_view name) const {
     return 100.0 * (other->memory.total() - base->memory.total()) / base->memory.total();
 }
 
-RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
-                         const RunContext& ctx) {
+RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const auto t_start = std::chrono::steady_clock::now();
     RunResult r;
     r.config = c;
-    r.effective_config = effective;
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
     const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
 
     const auto t_load = std::chrono::steady_clock::now();
-    const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
+    const Scene scene = load_scene(c.scene);
     r.load_seconds = seconds_since(t_load);
     check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
@@ -184,7 +175,7 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     r.mesh_triangles = scene.mesh.triangles.size();
     r.convert_seconds = seconds_since(t_convert);
 
-    RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry), c.file);
+    RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry));
     r.camera = frame.camera;
     bool rays_written = false;
     for (const std::string& name : c.methods) {
@@ -251,26 +242,15 @@ RunResult run_simulation(const RunConfig& c, const nlohmann::json& effective,
     return r;
 }
 
-bool same_trace(const nlohmann::json& a, const nlohmann::json& b) {
-    if (!a.is_object() || !b.is_object()) return a == b;
-    nlohmann::json x = a, y = b;
-    for (const char* key : {"cost", "memory", "name", "description"}) {
-        x.erase(key);
-        y.erase(key);
-    }
-    return x == y;
-}
-
-std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c, const nlohmann::json& effective) {
+std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c) {
     const auto t_start = std::chrono::steady_clock::now();
     RunResult r = traced;
     r.config = c;
-    r.effective_config = effective;
+    r.point = {};  // the app sets the point's own
     r.repriced = true;
-    r.provenance = nullptr;
     r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = load_presets(r, c, warp_presets);
+    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
     if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
         return std::nullopt;
     const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());

@@ -4,11 +4,12 @@
 #pragma once
 
 #include "scenes/stats.h"
-#include "sim/run/area_stats.h"
-#include "sim/hardware/cost_model.h"
-#include "sim/execution/frame.h"
-#include "sim/hardware/memory_model.h"
+#include "sim/config/config_json.h"
 #include "sim/config/run_config.h"
+#include "sim/execution/frame.h"
+#include "sim/hardware/cost_model.h"
+#include "sim/hardware/memory_model.h"
+#include "sim/run/area_stats.h"
 #include "sim/run/work_estimate.h"
 
 #include <array>
@@ -39,8 +40,7 @@ struct MethodRun {
 
 struct RunResult {
     RunConfig config;
-    nlohmann::json effective_config;
-    nlohmann::json sweep_values = nlohmann::json::object();
+    PointJson point;                   // set by the app for the reports; never read here
     std::string sweep_label;
     SceneStats scene;
     AreaStats areas;
@@ -52,7 +52,6 @@ struct RunResult {
     std::vector<MethodRun> methods;
     std::size_t mesh_vertices = 0, mesh_triangles = 0;  // for memory pricing without the scene
     bool repriced = false;             // priced from another point's trace (reprice_run)
-    nlohmann::ordered_json provenance; // set by the app (sim/app/provenance.h); report.json's "provenance"
     double load_seconds = 0.0, convert_seconds = 0.0, total_seconds = 0.0;
 
     [[nodiscard]] const MethodRun* find(std::string_view method) const;
@@ -88,20 +87,15 @@ struct RunContext {
     std::function<FrameResult(const std::string& method)> frame_source;
 };
 
-[[nodiscard]] RunResult run_simulation(const RunConfig& config, const nlohmann::json& effective,
-                                       const RunContext& context);
-
-// True when two (sweep-expanded) configs trace the same rays through the same
-// structures: they differ at most in the pricing-only keys `cost` and
-// `memory` (and `name`/`description`).
-[[nodiscard]] bool same_trace(const nlohmann::json& a, const nlohmann::json& b);
+// `config` is all a run reads: its scene description, resolved paths and
+// loaded presets (parse_run_config); no JSON, no file it does not name.
+[[nodiscard]] RunResult run_simulation(const RunConfig& config, const RunContext& context);
 
 // `config` priced from `traced`, a run of a config with the same trace
 // (same_trace), without tracing again: the counts are re-priced under
 // config's cost presets and the structures under its memory preset. nullopt
 // when that is not possible (a warp preset the trace did not record waves
 // for, or a method the other memory preset's instance limit now lets run).
-[[nodiscard]] std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& config,
-                                                   const nlohmann::json& effective);
+[[nodiscard]] std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& config);
 
 }  // namespace rtc

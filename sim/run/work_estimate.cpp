@@ -3,7 +3,6 @@
 
 #include "core/input_error.h"
 #include "core/sinks.h"
-#include "sim/util/json_reader.h"
 #include "sim/config/run_config.h"
 
 #include <unistd.h>
@@ -42,20 +41,14 @@ std::string count_text(double x) {
 
 namespace {
 
-double procedural_primitives(const nlohmann::json& scene, std::string& key) {
-    if (!scene.is_object() || !scene.contains("type") || !scene["type"].is_string()) return 0.0;
-    const auto number = [&](const char* k, double fallback) {
-        const auto it = scene.find(k);
-        return it != scene.end() && it->is_number() ? it->get<double>() : fallback;
-    };
-    const std::string type = scene["type"].get<std::string>();
-    if (type == "bundle") {
+double procedural_primitives(const SceneDesc& scene, std::string& key) {
+    if (scene.type == SceneType::Bundle) {
         key = "/scene/count";
-        return number("count", 1000.0);
+        return scene.bundle.count;
     }
-    if (type == "hair") {
+    if (scene.type == SceneType::Hair) {
         key = "/scene/strands";
-        return number("strands", 10000.0) * std::max(1.0, number("points_per_strand", 8.0) - 1.0);
+        return static_cast<double>(scene.hair.strands) * std::max(1.0, scene.hair.points_per_strand - 1.0);
     }
     return 0.0;
 }
@@ -110,7 +103,7 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
     double pixels = 0.0;
     if (w.type == WorkloadType::Rays) {
         std::error_code ec;
-        const auto size = std::filesystem::file_size(resolve_config_path(w.rays_file, c.file), ec);
+        const auto size = std::filesystem::file_size(w.rays_file, ec);
         const double rays = ec ? 0.0 : static_cast<double>(size / 32);
         e.rays = rays * methods;
         e.rays_key = "/workload/rays_file";
@@ -204,29 +197,6 @@ void check_work(const WorkEstimate& e, const WorkLimits& limits, const std::stri
         throw InputError(file + ": " + e.memory_key + ": about " + format_bytes(e.memory_bytes) +
                          " of memory (" + e.memory_detail + ") exceed --max-memory " +
                          format_bytes(ceiling) + " (raise it or pass --force to run anyway)");
-}
-
-double sweep_point_count(const nlohmann::json& config, const std::string& file, const WorkLimits& limits) {
-    if (!config.is_object() || !config.contains("sweep")) return 1.0;
-    const nlohmann::json& sweep = config["sweep"];
-    const JsonReader r(sweep, file, "/sweep");
-    r.require_object();
-    double points = 1.0;
-    std::string largest;
-    std::size_t largest_size = 0;
-    for (const auto& [key, values] : sweep.items()) {
-        if (!values.is_array() || values.empty())
-            r.fail(key, "expected a non-empty list of values, got " + describe(values));
-        points *= static_cast<double>(values.size());  // doubles: no wrap, at worst inf
-        if (values.size() > largest_size) {
-            largest_size = values.size();
-            largest = key;
-        }
-    }
-    if (points > limits.max_sweep_points && !limits.force)
-        r.fail(largest, "the sweep has " + count_text(points) + " points, more than " +
-                            count_text(limits.max_sweep_points) + " (pass --force to run it anyway)");
-    return points;
 }
 
 }  // namespace rtc

@@ -13,8 +13,6 @@
 
 #include "scenes/scene.h"
 
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -54,12 +52,6 @@ struct WorkEstimate {
 void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const std::string& file);
 // Several sweep points: rays add up, memory is the largest point's.
 [[nodiscard]] WorkEstimate combine_work(const std::vector<WorkEstimate>& points);
-
-// The number of points a config's `sweep` block expands to, computed without
-// expanding it; throws InputError naming /sweep above the limit (unless
-// forced) or on overflow.
-[[nodiscard]] double sweep_point_count(const nlohmann::json& config, const std::string& file,
-                                       const WorkLimits& limits);
 
 // "123456", or "1.23e+07" from a million on.
 [[nodiscard]] std::string count_text(double x);

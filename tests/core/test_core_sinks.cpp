@@ -25,6 +25,19 @@ EventTotals all_at_once(const std::vector<RayCounts>& counts) {
     return t;
 }
 
+// Counts, in `seen`, the events events_of_unit<U, Others> lists, checking
+// each is of unit U (of another unit with Others) and the list is in order.
+template <EventUnit U, bool Others = false>
+void check_unit_list(std::vector<int>& seen) {
+    constexpr auto list = events_of_unit<U, Others>();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        CAPTURE(k);
+        CHECK((event_unit(static_cast<Event>(list[k])) == U) != Others);
+        if (k > 0) CHECK(list[k - 1] < list[k]);
+        ++seen[list[k]];
+    }
+}
+
 }  // namespace
 
 TEST_CASE("sinks: add_all equals add per item, with and without counts that would wrap 32 bits") {
@@ -58,4 +71,18 @@ TEST_CASE("sinks: add_all equals add per item, with and without counts that woul
     const EventTotals sum = all_at_once(full);
     CHECK(sum == one_by_one(full));
     CHECK(sum[static_cast<Event>(0)] == 600ull * 0xFFFFFFFFull);
+}
+
+TEST_CASE("events: events_of_unit lists every event of a unit once, in order, and with Others the rest") {
+    std::vector<int> seen(kEventCount, 0);
+    check_unit_list<EventUnit::Shader>(seen);
+    check_unit_list<EventUnit::RtUnit>(seen);
+    check_unit_list<EventUnit::HandOff>(seen);
+    check_unit_list<EventUnit::Program>(seen);
+    CHECK(seen == std::vector<int>(kEventCount, 1));
+    std::vector<int> split(kEventCount, 0);
+    check_unit_list<EventUnit::Program>(split);
+    check_unit_list<EventUnit::Program, /*Others=*/true>(split);
+    CHECK(split == std::vector<int>(kEventCount, 1));
+    CHECK(events_of_unit<EventUnit::Shader>()[0] == static_cast<std::uint8_t>(Event::Ray));
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fuzz_common.h"
+#include "sim/app/run_all.h"
 #include "sim/calibrate/calibrate_config.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/util/json_file.h"
@@ -54,7 +55,7 @@ inline void run_pipeline(nlohmann::json config, const std::vector<std::string>& 
     for (const RunConfig& c : parsed) {
         for (const std::string& p : c.cost_presets) (void)load_cost_model(p);
         (void)load_memory_model(c.memory_preset);
-        const Scene scene = load_scene(JsonReader(c.scene, c.file, "/scene"));
+        const Scene scene = load_scene(c.scene);
         check_work(estimate_scene_work(c, scene), limits, file);
         const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
         if (c.workload.type != WorkloadType::Rays) (void)make_camera(c.workload, geometry_bounds(geometry));

@@ -45,6 +45,10 @@ TEST_CASE("break-even map: the config block names unknown events and bad ranges 
     c["break_even"][0]["y"]["max"] = 0.5;
     CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"), doctest::Contains("/break_even/0/y/max"), InputError);
     c["break_even"][0]["y"]["max"] = 5;
+    // The preset is one of the run's, checked with the presets loaded.
+    CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"),
+                         "x.json: /break_even: preset \"p\" is not one of the run's cost presets", InputError);
+    c["break_even"][0]["preset"] = "turing-calibrated";
     const RunConfig r = parse_run_config(c, "x.json");
     REQUIRE(r.break_even.size() == 1);
     CHECK(r.break_even[0].y.events == std::vector<Event>{Event::ObbBoxTest});
@@ -75,7 +79,7 @@ TEST_CASE("break-even map: the preset's own point is marked, with five ticks per
 TEST_CASE("break-even map: a scale axis and a method subset are read, unknown methods refused by path") {
     nlohmann::json c = {{"scene", {{"type", "bundle"}}},
                         {"methods", {"ref", "obb"}},
-                        {"break_even", {{{"name", "m"}, {"preset", "p"}, {"methods", {"ref", "obb"}},
+                        {"break_even", {{{"name", "m"}, {"preset", "turing-calibrated"}, {"methods", {"ref", "obb"}},
                                          {"x", {{"events", {"op_fma", "op_load"}}, {"scale", true}, {"min", 0.1}, {"max", 10}}},
                                          {"y", {{"events", {"context_switch"}}, {"min", 1}, {"max", 10}}}}}}};
     const RunConfig r = parse_run_config(c, "x.json");

@@ -89,3 +89,28 @@ TEST_CASE("architecture: files stay under ~400 lines and folders under ~15 files
         }
     }
 }
+
+TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed plan of sim/config)") {
+    // A run is handed a RunConfig: scene description, absolute paths, loaded
+    // presets (docs/architecture.md, "The path of a config"). Parsing,
+    // resolving and loading belong to sim/config and the planner in sim/app.
+    const std::string forbidden[] = {"sim/util/json_reader.h", "sim/util/json_file.h", "sim/util/paths.h"};
+    int files = 0;
+    for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / "run")) {
+        if (!f.is_regular_file() || !is_source(f.path())) continue;
+        ++files;
+        std::ifstream in(f.path());
+        std::string line;
+        int n = 0;
+        while (std::getline(in, line)) {
+            ++n;
+            CAPTURE(f.path().filename().string());
+            CAPTURE(n);
+            CHECK_MESSAGE(line.find("nlohmann") == std::string::npos, "sim/run must not name nlohmann (JSON)");
+            if (line.rfind("#include", 0) != 0) continue;
+            for (const std::string& what : forbidden)
+                CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/run must not include " + what));
+        }
+    }
+    CHECK(files > 0);
+}

@@ -115,18 +115,16 @@ TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") 
     CHECK(presets["memory"]["contents"]["name"] ==
           json::parse(read_text_file(presets["memory"]["file"].get<std::string>()))["name"]);
     // Relative to the config, not the working directory: from a directory
-    // where the path exists relative to the working directory, it fails.
+    // where the path exists relative to the working directory, it fails,
+    // when the config is planned (before anything runs).
     const std::string file = (dir / "cfg" / "run.json").string();
     json config = json::parse(read_text_file(file));
     config["scene"]["curves"]["path"] = "cfg/data/strands.txt";
     const WorkingDirectory cwd(dir);
     REQUIRE(fs::exists("cfg/data/strands.txt"));
-    const RunPlan plan = plan_runs(config, file);
-    RunContext quiet;
-    quiet.quiet = true;
     const std::string expected =
         file + ": /scene/curves/path: no such file: " + (dir / "cfg" / "cfg" / "data" / "strands.txt").string();
-    CHECK_THROWS_WITH_AS((void)run_point(plan, 0, quiet), doctest::Contains(expected.c_str()), InputError);
+    CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains(expected.c_str()), InputError);
 }
 
 TEST_CASE("paths: a missing preset names its key and the places searched") {
@@ -197,6 +195,22 @@ TEST_CASE("calibrate: an existing output file is refused before tracing, unless 
                          doctest::Contains("is a shipped preset"), InputError);
 }
 
+TEST_CASE("calibrate: the start preset is loaded and checked when the config is planned") {
+    const fs::path dir = scratch("calibrate_start");
+    write(dir / "start.json", "{\"name\": \"broken\"}");
+    json config = json::parse(read_text_file(kTiny));
+    config["cost"] = json::array({"turing-per-ray-guess"});
+    config["memory"] = "memory-optix7";
+    config["calibrate"] = {{"parameters", {{{"events", {"context_switch"}}, {"min", 1}, {"max", 10}}}},
+                           {"targets", {{{"label", "tiny"}, {"speedup", 2.0}}}},
+                           {"start", "start.json"}};
+    const std::string file = (dir / "run.json").string();
+    CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains((dir / "start.json").string().c_str()),
+                         InputError);
+    config["calibrate"]["start"] = "turing-per-ray-guess";
+    CHECK(plan_runs(config, file).calibrate->start == "turing-per-ray-guess");
+}
+
 TEST_CASE("provenance: version, commit, effective config with defaults, presets, threads, date") {
     const fs::path out = scratch("provenance");
     REQUIRE(simulate({kTiny, "--out", out.string(), "--set", "output.images=false", "--set", "workload.width=8",
@@ -216,7 +230,7 @@ TEST_CASE("provenance: version, commit, effective config with defaults, presets,
     CHECK(e["workload"]["width"] == 8);
     // It parses again as a config, to the same effective config.
     const RunConfig again = parse_run_config(e, kTiny);
-    CHECK(json(run_config_to_json(again)) == e);
+    CHECK(json(run_config_to_json(again, e)) == e);
     // Preset contents as in the files.
     for (const json& preset : p["presets"]["cost"])
         CHECK(preset["contents"] == json::parse(read_text_file(preset["file"].get<std::string>())));

@@ -207,7 +207,7 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
     ctx.quiet = true;
     ctx.threads = 1;
     ctx.record_warps = true;
-    const RunResult r = run_simulation(c, config, ctx);
+    const RunResult r = run_simulation(c, ctx);
     for (std::size_t p = 0; p < 2; ++p) {
         const std::vector<CostModel> draws = draw_cost_models(r.costs[p], 8, 3);
         for (const MethodRun& m : r.methods) {

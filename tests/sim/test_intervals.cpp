@@ -64,10 +64,10 @@ Runs run_both(int draws) {
     ctx.quiet = true;
     ctx.threads = 1;
     ctx.record_warps = true;  // to check the batched draw pricing against price_wave
-    Runs r{run_simulation(c, config, ctx), {}};
+    Runs r{run_simulation(c, ctx), {}};
     ctx.record_warps = false;
     ctx.threads = 2;
-    r.two = run_simulation(c, config, ctx);
+    r.two = run_simulation(c, ctx);
     return r;
 }
 

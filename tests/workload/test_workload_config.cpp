@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <string>
 
 using namespace rtc;
@@ -101,7 +102,8 @@ TEST_CASE("workload config: rays type resolves the file against the config direc
     const WorkloadDesc r =
         parse(R"({"workload": {"type": "rays", "rays_file": "data/a.rays"}})", "configs/runs/x.json");
     CHECK(r.type == WorkloadType::Rays);
-    CHECK(r.rays_file == "configs/runs/data/a.rays");
+    // Absolute, once: a run opens it from any working directory.
+    CHECK(r.rays_file == (std::filesystem::current_path() / "configs/runs/data/a.rays").string());
     const WorkloadDesc abs =
         parse(R"({"workload": {"type": "rays", "rays_file": "/tmp/a.rays"}})", "configs/x.json");
     CHECK(abs.rays_file == "/tmp/a.rays");
