@@ -6,8 +6,8 @@
 // primitive over a one-leaf unit-box BLAS), which a ray repeats for thousands
 // of instances in dense scenes. It computes exactly what the scalar path
 // computes, `intersect_box(box, a.point(o), safe_inverse(a.vector(d)), ...)`:
-// the same float operations in the same order per lane (glm's mat3 * vec3 is
-// (c0 * x + c1 * y) + c2 * z, then + translation; no FMA contraction on the
+// the same float operations in the same order per lane (o - origin first,
+// then glm's mat3 * vec3, (c0 * x + c1 * y) + c2 * z; no FMA contraction on the
 // default SSE2 target), the same zero mapping of safe_inverse and min/max with
 // the same operand order. tests/core/test_core_instance_box.cpp checks it
 // bit for bit against the scalar path, zeros of either sign, infinities and
@@ -35,14 +35,15 @@ struct ObjectRayParts {
 
 #if defined(__SSE2__)
 
-// A world ray held in lanes for many instance steps: each component broadcast.
+// A world ray held in lanes for many instance steps: the origin in lanes 0-2
+// (each instance subtracts its own origin first), the direction's
+// components broadcast.
 struct LaneRay {
-    __m128 ox, oy, oz, dx, dy, dz;
+    __m128 o, dx, dy, dz;
     float tmin;
     explicit LaneRay(const Ray& r)
-        : ox(_mm_set1_ps(r.origin.x)), oy(_mm_set1_ps(r.origin.y)), oz(_mm_set1_ps(r.origin.z)),
-          dx(_mm_set1_ps(r.direction.x)), dy(_mm_set1_ps(r.direction.y)), dz(_mm_set1_ps(r.direction.z)),
-          tmin(r.tmin) {}
+        : o(load3(r.origin)), dx(_mm_set1_ps(r.direction.x)), dy(_mm_set1_ps(r.direction.y)),
+          dz(_mm_set1_ps(r.direction.z)), tmin(r.tmin) {}
 };
 
 // The ray's origin and direction in object space, in lanes 0-2: exactly
@@ -50,11 +51,12 @@ struct LaneRay {
 struct ObjectRayLanes {
     __m128 origin, direction;
 };
-[[nodiscard, gnu::always_inline]] inline ObjectRayLanes transform(const Affine& a, const LaneRay& r) {
+[[nodiscard, gnu::always_inline]] inline ObjectRayLanes transform(const CentredAffine& a, const LaneRay& r) {
     const __m128 c0 = load3(a.linear[0]), c1 = load3(a.linear[1]), c2 = load3(a.linear[2]);
-    const __m128 o = _mm_add_ps(
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, r.ox), _mm_mul_ps(c1, r.oy)), _mm_mul_ps(c2, r.oz)),
-        load3(a.translation));
+    const __m128 e = _mm_sub_ps(r.o, load3(a.origin));
+    const __m128 ex = _mm_shuffle_ps(e, e, _MM_SHUFFLE(0, 0, 0, 0)), ey = _mm_shuffle_ps(e, e, _MM_SHUFFLE(1, 1, 1, 1)),
+                 ez = _mm_shuffle_ps(e, e, _MM_SHUFFLE(2, 2, 2, 2));
+    const __m128 o = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, ex), _mm_mul_ps(c1, ey)), _mm_mul_ps(c2, ez));
     const __m128 d = _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, r.dx), _mm_mul_ps(c1, r.dy)), _mm_mul_ps(c2, r.dz));
     return {o, d};
 }
@@ -63,7 +65,7 @@ struct ObjectRayLanes {
 // the scalar transform (two calls) cost about 60 instructions. (Where two
 // NaNs meet in a sum, the result's sign follows an operand order the
 // compiler may swap in either path: NaNs agree only as NaNs.)
-[[nodiscard, gnu::always_inline]] inline Ray object_ray(const Affine& a, const LaneRay& r, float tmax) {
+[[nodiscard, gnu::always_inline]] inline Ray object_ray(const CentredAffine& a, const LaneRay& r, float tmax) {
     const ObjectRayLanes t = transform(a, r);
     Ray out;
     store3(t.origin, out.origin);
@@ -79,7 +81,7 @@ struct ObjectRayLanes {
 // direction (exactly a.ray()'s): taking them from here instead of
 // transforming again (the scalar a.ray(), two calls) saves about 60
 // instructions per instance entered; on a miss `object` is left alone.
-[[nodiscard, gnu::always_inline]] inline float intersect_instance_box(const Affine& a, const Aabb& box,
+[[nodiscard, gnu::always_inline]] inline float intersect_instance_box(const CentredAffine& a, const Aabb& box,
                                                                      const LaneRay& r, float tmax,
                                                                      ObjectRayParts& object) {
     const auto [o, d] = transform(a, r);
@@ -97,13 +99,13 @@ struct LaneRay {
     explicit LaneRay(const Ray& r) : ray(r) {}
 };
 
-[[nodiscard]] inline Ray object_ray(const Affine& a, const LaneRay& r, float tmax) {
+[[nodiscard]] inline Ray object_ray(const CentredAffine& a, const LaneRay& r, float tmax) {
     Ray out = a.ray(r.ray);
     out.tmax = tmax;
     return out;
 }
 
-[[nodiscard]] inline float intersect_instance_box(const Affine& a, const Aabb& box, const LaneRay& r,
+[[nodiscard]] inline float intersect_instance_box(const CentredAffine& a, const Aabb& box, const LaneRay& r,
                                                   float tmax, ObjectRayParts& object) {
     const Ray t = a.ray(r.ray);
     const float near = intersect_box(box, t.origin, safe_inverse(t.direction), r.ray.tmin, tmax);

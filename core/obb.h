@@ -32,7 +32,7 @@ struct Obb {
     // Containment up to a relative slack `eps` in unit-box coordinates (for
     // sampling tests); a degenerate (singular) box contains nothing.
     [[nodiscard]] bool contains(const Vec3& p, float eps = 1e-5f) const {
-        const auto unit_from_world = world_from_unit.inverse();
+        const auto unit_from_world = centred_inverse(world_from_unit);
         if (!unit_from_world) return false;
         const Vec3 q = unit_from_world->point(p);
         return std::abs(q.x) <= 1.0f + eps && std::abs(q.y) <= 1.0f + eps &&

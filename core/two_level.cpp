@@ -9,10 +9,10 @@ namespace rtc {
 
 namespace {
 
-// Affine::identity() up to the signs of its zeros (glm's == compares floats: -0 == 0).
-bool is_identity(const Affine& a) {
-    const Affine id = Affine::identity();
-    return a.linear == id.linear && a.translation == id.translation;
+// The identity up to the signs of its zeros (glm's == compares floats:
+// -0 == 0; x - (+-0) is x for every x passes_identity lets through).
+bool is_identity(const CentredAffine& a) {
+    return a.linear == glm::mat3(1.0f) && a.origin == Vec3(0.0f);
 }
 
 // See TwoLevel::lone_identity.
@@ -35,7 +35,7 @@ std::invalid_argument no_blas(std::size_t instance, std::uint32_t blas) {
 }  // namespace
 
 Instance make_instance(std::uint32_t blas, std::uint32_t id, const Affine& world_from_object) {
-    const auto inverse = world_from_object.inverse();
+    const auto inverse = centred_inverse(world_from_object);
     if (!inverse)
         throw std::invalid_argument("instance " + std::to_string(id) +
                                     ": transform is singular or not finite");

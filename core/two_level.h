@@ -25,7 +25,7 @@ struct Instance {
     std::uint32_t blas = 0;  // index into TwoLevel::blases
     std::uint32_t id = 0;    // user instance id, handed to the leaf program
     Affine world_from_object;
-    Affine object_from_world;
+    CentredAffine object_from_world;  // about world_from_object.translation
 };
 
 // An instance as the traversal reads it: what the instance step needs, in one
@@ -33,7 +33,7 @@ struct Instance {
 // whole Instance, 104 bytes at a 104-byte stride, spread the same fields over
 // two or three lines.
 struct alignas(64) TlasInstance {
-    Affine object_from_world;
+    CentredAffine object_from_world;
     std::uint32_t blas = 0;
     std::uint32_t id = 0;
 };
@@ -48,7 +48,7 @@ struct TwoLevel {
     Bvh tlas;  // over the world-space boxes of the instances' BLAS roots
     // Set by build_two_level: the TLAS root is one leaf over one instance
     // whose object_from_world is the identity (ones on the diagonal, zeros
-    // of either sign elsewhere) and whose BLAS has inner nodes, the shape of
+    // of either sign elsewhere, origin 0) and whose BLAS has inner nodes, the shape of
     // the reference method's scene. trace_two_level then skips the instance
     // transform for rays it maps to themselves bit for bit (see
     // passes_identity), counting the same events.
@@ -93,9 +93,9 @@ struct PrimitiveQuery {
 
 // True when the identity transform (object_from_world of an instance that
 // TwoLevel::lone_identity names) maps `ray` to itself bit for bit. Per
-// component it computes ((1 * x + z1 * y) + z2 * z) + z3 with signed zeros zi
-// (core/instance_box.h's order): exact for finite components, except that -0
-// plus a +0 is +0. So: every origin and direction component finite and none
+// component it computes x - 0, then (1 * x + z1 * y) + z2 * z with signed
+// zeros zi (core/instance_box.h's order): exact for finite components, except
+// that -0 plus a +0 is +0. So: every origin and direction component finite and none
 // -0 (camera and bounce rays nearly always are).
 [[nodiscard, gnu::always_inline]] inline bool passes_identity(const Ray& ray) {
 #if defined(__SSE2__)

@@ -43,8 +43,8 @@ struct Capsule {
 }
 
 [[nodiscard]] inline Aabb bounds(const Capsule& c) {
-    const float r = std::max(c.radius, 0.0f);
-    return padded_bounds({glm::min(c.p0, c.p1) - r, glm::max(c.p0, c.p1) + r});
+    const double r = std::max(c.radius, 0.0f);
+    return outward_bounds(glm::min(DVec3(c.p0), DVec3(c.p1)) - r, glm::max(DVec3(c.p0), DVec3(c.p1)) + r);
 }
 
 [[nodiscard]] inline Obb oriented_bounds(const Capsule& c, ObbVariant = ObbVariant::Paper) {

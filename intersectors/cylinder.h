@@ -36,15 +36,17 @@ struct Cylinder {
 }
 
 [[nodiscard]] inline Aabb bounds(const Cylinder& c) {
-    const float r = std::max(c.radius, 0.0f);
-    const Vec3 axis = c.p1 - c.p0;
-    const float len2 = glm::dot(axis, axis);
-    Vec3 e(r);
-    if (len2 > 0.0f) {
-        const Vec3 w2 = axis * axis / len2;
-        e = r * glm::sqrt(glm::max(Vec3(1.0f) - w2, Vec3(0.0f)));
+    const double r = std::max(c.radius, 0.0f);
+    const DVec3 p0(c.p0), p1(c.p1), axis = p1 - p0;
+    const double len2 = glm::dot(axis, axis);
+    DVec3 e(r);
+    if (len2 > 0.0) {
+        // The end disks' extents r sqrt(1 - w_i^2) = r sqrt(w_j^2 + w_k^2)
+        // (no cancellation), widened by 2^-40 for their few roundings.
+        const DVec3 a2 = axis * axis;
+        e = r * (glm::sqrt(DVec3(a2.y + a2.z, a2.z + a2.x, a2.x + a2.y) / len2) + 0x1p-40);
     }
-    return padded_bounds({glm::min(c.p0, c.p1) - e, glm::max(c.p0, c.p1) + e});
+    return outward_bounds(glm::min(p0, p1) - e, glm::max(p0, p1) + e);
 }
 
 [[nodiscard]] inline Obb oriented_bounds(const Cylinder& c, ObbVariant = ObbVariant::Paper) {

@@ -45,8 +45,9 @@ struct Link {
 }
 
 [[nodiscard]] inline Aabb bounds(const Link& k) {
-    const float r0 = std::max(k.r0, 0.0f), r1 = std::max(k.r1, 0.0f);
-    return padded_bounds({glm::min(k.p0 - r0, k.p1 - r1), glm::max(k.p0 + r0, k.p1 + r1)});
+    const double r0 = std::max(k.r0, 0.0f), r1 = std::max(k.r1, 0.0f);
+    const DVec3 p0(k.p0), p1(k.p1);
+    return outward_bounds(glm::min(p0 - r0, p1 - r1), glm::max(p0 + r0, p1 + r1));
 }
 
 [[nodiscard]] inline Obb oriented_bounds(const Link& k, ObbVariant = ObbVariant::Paper) {

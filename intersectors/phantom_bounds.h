@@ -85,15 +85,20 @@ struct CurveBox {
             if (box.area() < best.area()) best = box;
         }
     }
-    // Cover rounding of the projections (a few ulps of the curve's size and
-    // position), then keep the box invertible (see segment_obb).
-    float scale = r;
-    for (const Vec3& p : c.cp)
-        scale = std::max({scale, std::abs(p.x), std::abs(p.y), std::abs(p.z),
-                          glm::length(p - c.cp[0])});
-    const float slack = scale * kBoundsUlps, floor = std::max(scale * 0x1p-20f, 1e-12f);
-    const Vec3 half = glm::max(best.half + slack, Vec3(floor));
-    return Obb::from_frame(best.center, best.x, best.y, best.z, half).padded(kObbPad);
+    // The chosen frame's half-extents again, exactly (double) against its
+    // float centre and axes: the float fit above only chose the frame. Then
+    // the hardware's error bound (finish_obb, frame.h).
+    const DVec3 center(best.center);
+    const DVec3 axes[3] = {DVec3(best.x), DVec3(best.y), DVec3(best.z)};
+    DVec3 ext(0.0);
+    double reach = 0.0;
+    for (const Vec3& p : c.cp) {
+        const DVec3 q = DVec3(p) - center;
+        for (int i = 0; i < 3; ++i) ext[i] = std::max(ext[i], std::abs(glm::dot(axes[i], q)));
+        reach = std::max(reach, glm::length(q));
+    }
+    for (int i = 0; i < 3; ++i) ext[i] += double(r) * glm::length(axes[i]);
+    return finish_obb(best.center, best.x, best.y, best.z, ext, reach + double(r));
 }
 
 }  // namespace rtc

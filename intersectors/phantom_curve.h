@@ -61,8 +61,8 @@ struct PhantomOptions {
 [[nodiscard]] inline Aabb bounds(const PhantomCurve& c) {
     Aabb b;
     for (const Vec3& p : c.cp) b.extend(p);
-    const float r = max_radius(c);
-    return padded_bounds({b.lo - r, b.hi + r});
+    const double r = max_radius(c);
+    return outward_bounds(DVec3(b.lo) - r, DVec3(b.hi) + r);
 }
 
 namespace detail {

@@ -1,6 +1,9 @@
 // Scene statistics (see stats.h). Sums in double: millions of small terms.
 #include "scenes/stats.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace rtc {
 
 SceneStats compute_stats(const Scene& scene) {
@@ -24,6 +27,11 @@ SceneStats compute_stats(const Scene& scene) {
             const double r = 0.5 * (double{s.radii[k]} + double{s.radii[k + 1]});
             length += len;
             radius += r;
+            const auto magnitude = [](const Vec3& p) {
+                return std::max({std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
+            };
+            const double m = std::max(magnitude(s.points[k]), magnitude(s.points[k + 1]));
+            st.thin_segments += too_thin_for_float(std::max(double{s.radii[k]}, double{s.radii[k + 1]}), m);
             if (r > 0.0) {
                 ratio += len / r;
                 ++with_radius;

@@ -105,7 +105,7 @@ public:
     // Programs start with an Embree-style OBB test (curveNi_intersector.h):
     // per primitive the map of its OBB onto the unit box; a ray that misses
     // it (or enters it beyond the current hit) skips the program's body.
-    void set_leaf_obbs(std::span<const Affine> unit_from_world) { leaf_obbs_ = unit_from_world; }
+    void set_leaf_obbs(std::span<const CentredAffine> unit_from_world) { leaf_obbs_ = unit_from_world; }
 
     // A hardware ray/LSS test in the RT unit (capsules and links are linear
     // swept spheres: both end spheres and the tangent cone between them): no
@@ -174,7 +174,7 @@ private:
     TraceScratch& scratch_;
     Sink& sink_;
     TraceHit best_;
-    std::span<const Affine> leaf_obbs_;
+    std::span<const CentredAffine> leaf_obbs_;
 };
 
 }  // namespace rtc

@@ -20,7 +20,7 @@ namespace {
 
 struct LeafObbStructures {
     TwoLevelStructures two_level;
-    std::vector<Affine> unit_from_world;  // per primitive: world -> its OBB's unit box
+    std::vector<CentredAffine> unit_from_world;  // per primitive: world -> its OBB's unit box
 };
 
 struct WorldRayLeaf {
@@ -39,7 +39,7 @@ struct LeafObbMethod {
         return c;
     }
     static std::size_t bytes(const Structures& s) {
-        return s.two_level.accel.memory_bytes() + s.unit_from_world.capacity() * sizeof(Affine);
+        return s.two_level.accel.memory_bytes() + s.unit_from_world.capacity() * sizeof(CentredAffine);
     }
 
     template <TraversalMode Mode, class Programs>
@@ -55,7 +55,7 @@ struct LeafObbMethod {
 template <class Prim>
 LeafObbStructures build_leaf_obb(const std::vector<Prim>& prims, const Geometry& g, const MethodOptions& o) {
     std::vector<Aabb> boxes(prims.size());
-    std::vector<Affine> unit_from_world(prims.size());
+    std::vector<CentredAffine> unit_from_world(prims.size());
     parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) {
         boxes[i] = bounds(prims[i]);
         // make_instance inverts exactly as the masquerade's instances do.

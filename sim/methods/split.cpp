@@ -26,16 +26,7 @@ namespace {
 constexpr int kMaxDepth = 3;
 constexpr double kGain = 0.7;
 
-Aabb outward(const DVec3& lo, const DVec3& hi) {
-    Aabb b;
-    for (int i = 0; i < 3; ++i) {
-        b.lo[i] = static_cast<float>(lo[i]);
-        b.hi[i] = static_cast<float>(hi[i]);
-        if (double(b.lo[i]) > lo[i]) b.lo[i] = std::nextafter(b.lo[i], -kInfinity);
-        if (double(b.hi[i]) < hi[i]) b.hi[i] = std::nextafter(b.hi[i], kInfinity);
-    }
-    return padded_bounds(b);
-}
+Aabb outward(const DVec3& lo, const DVec3& hi) { return outward_bounds(lo, hi); }
 
 double half_area(const Aabb& b) { return 0.5 * double(b.surface_area()); }
 
@@ -52,7 +43,11 @@ struct Straight {
         if (discs) {
             const DVec3 w = p1 - p0;
             const double l2 = glm::dot(w, w);
-            if (l2 > 0.0) ea = eb = r0 * glm::sqrt(glm::max(DVec3(1.0) - w * w / l2, DVec3(0.0)));
+            // r0 sqrt(1 - w_i^2 / l2) as sqrt(w_j^2 + w_k^2) (no cancellation),
+            // widened by 2^-40 for its roundings (as bounds(Cylinder)).
+            const DVec3 a2 = w * w;
+            if (l2 > 0.0)
+                ea = eb = r0 * (glm::sqrt(DVec3(a2.y + a2.z, a2.z + a2.x, a2.x + a2.y) / l2) + 0x1p-40);
         }
         return outward(glm::min(pa - ea, pb - eb), glm::max(pa + ea, pb + eb));
     }

@@ -20,6 +20,7 @@ nlohmann::ordered_json scene_stats_json(const SceneStats& s) {
     j["mean_segment_length"] = s.mean_segment_length;
     j["mean_radius"] = s.mean_radius;
     j["mean_length_over_radius"] = s.mean_length_over_radius;
+    j["thin_segments"] = s.thin_segments;
     return j;
 }
 

@@ -170,6 +170,12 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
+    if (r.scene.thin_segments > 0)  // a warning, printed under --quiet too
+        std::fprintf(stderr,
+                     "warning: %s: %zu of %zu segments are thinner than %g float ulps of their position "
+                     "(radius below %g x their largest coordinate): their bounds, and so the counts, "
+                     "depend on where the scene sits (report.json: scene.thin_segments)\n",
+                     c.file.c_str(), r.scene.thin_segments, r.scene.segments, kThinUlps, kThinUlps * 0x1p-23);
     r.areas = area_stats(geometry.prims, ctx.threads);
     r.mesh_vertices = scene.mesh.vertices.size();
     r.mesh_triangles = scene.mesh.triangles.size();

@@ -1,7 +1,7 @@
 // The instance step on SIMD lanes (core/instance_box.h) against the scalar
-// path it replaces: transform the ray with Affine::point / vector, take
-// safe_inverse, test the box with intersect_box; and object_ray() and the box
-// test's own object ray against Affine::ray. Results must be equal bit for
+// path it replaces: transform the ray with CentredAffine::point / vector,
+// take safe_inverse, test the box with intersect_box; and object_ray() and
+// the box test's own object ray against CentredAffine::ray. Results must be equal bit for
 // bit, for ordinary rays and for the inputs where float rules bite: zero
 // direction components of either sign (the +-1e30 mapping), axis-aligned and
 // degenerate transforms, rays starting on a slab, infinite and NaN tmax.
@@ -22,18 +22,18 @@ using rtc::test::Rng;
 
 namespace {
 
-float scalar_path(const Affine& a, const Aabb& box, const Ray& r, float tmax) {
+float scalar_path(const CentredAffine& a, const Aabb& box, const Ray& r, float tmax) {
     return intersect_box(box, a.point(r.origin), safe_inverse(a.vector(r.direction)), r.tmin, tmax);
 }
 
 // Counts the cases compared and fails on the first that differs in any bit.
 struct Compare {
     int compared = 0, hits = 0;
-    void operator()(const Affine& a, const Aabb& box, const Ray& r, float tmax) {
+    void operator()(const CentredAffine& a, const Aabb& box, const Ray& r, float tmax) {
         const float want = scalar_path(a, box, r, tmax);
         ObjectRayParts entered{r.origin, r.direction};  // left alone on a miss
         const float got = intersect_instance_box(a, box, LaneRay(r), tmax, entered);
-        // The object ray on the lanes against Affine::ray, every float's bits.
+        // The object ray on the lanes against CentredAffine::ray, every float's bits.
         // NaNs only as NaNs: where two NaNs meet in a sum (0 * inf in one
         // term, a NaN input in another) the result's sign is the operand
         // order's, which the compiler may swap in either path (a + b as
@@ -85,7 +85,7 @@ TEST_CASE("instance box: lanes equal the scalar transform, safe_inverse and slab
     const Aabb centred{Vec3(-1.0f), Vec3(1.0f)};
     for (int i = 0; i < 20000; ++i) {
         const Affine world_from_object = random_affine(rng);
-        const auto object_from_world = world_from_object.inverse();
+        const auto object_from_world = centred_inverse(world_from_object);
         REQUIRE(object_from_world);
         // Rays aimed near the box so that hits, misses and grazes all occur.
         const Vec3 target = world_from_object.point(rng.point(-0.2f, 1.2f));
@@ -109,13 +109,14 @@ TEST_CASE("instance box: zeros of either sign, axis-aligned frames, infinities a
                                      Affine::scale(Vec3(2.0f, 0.5f, -1.0f)),
                                      Affine::from_columns(Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0.25f))};
     Compare cmp;
-    for (const Affine& a : frames)
+    for (const Affine& frame : frames)
         for (float dx : special)
             for (float dy : special)
                 for (float dz : {0.0f, -0.0f, 1.0f, -1.0f}) {
                     Ray r;
                     r.origin = Vec3(0.5f, 0.0f, -1.0f);  // on the y = 0 slab
                     r.direction = Vec3(dx, dy, dz);
+                    const CentredAffine a = *centred_inverse(frame);
                     for (float tmax : {kInfinity, 1.5f, std::numeric_limits<float>::quiet_NaN()}) {
                         cmp(a, unit, r, tmax);
                         r.origin = Vec3(-0.0f, 0.5f, 0.5f);

@@ -73,7 +73,7 @@ TEST_CASE("two-level: instanced triangles equal the flattened world-space scene"
             const Instance& in = instances[placed.id];
             ++seen[placed.id];
             CHECK(placed.blas == in.blas);
-            CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(Affine)) == 0);
+            CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(CentredAffine)) == 0);
         }
         CHECK(std::count(seen.begin(), seen.end(), 1) == static_cast<long>(instances.size()));
         int same = 0, hits = 0, total = 0;
@@ -237,7 +237,7 @@ TEST_CASE("two-level: instances made on demand build what the same instances in 
     REQUIRE(on_demand.instances.size() == from_array.instances.size());
     for (std::size_t k = 0; k < from_array.instances.size(); ++k) {  // field by field: a TlasInstance has padding
         const TlasInstance &a = on_demand.instances[k], &b = from_array.instances[k];
-        CHECK(std::memcmp(&a.object_from_world, &b.object_from_world, sizeof(Affine)) == 0);
+        CHECK(std::memcmp(&a.object_from_world, &b.object_from_world, sizeof(CentredAffine)) == 0);
         CHECK(a.blas == b.blas);
         CHECK(a.id == b.id);
     }
@@ -257,7 +257,7 @@ TEST_CASE("two-level: instances made on demand build what the same instances in 
     for (std::size_t k = 0; k < expected.prim_ids.size(); ++k) {
         const Instance& in = instances[expected.prim_ids[k]];
         const TlasInstance& placed = on_demand.instances[k];
-        CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(Affine)) == 0);
+        CHECK(std::memcmp(&placed.object_from_world, &in.object_from_world, sizeof(CentredAffine)) == 0);
         CHECK(placed.blas == in.blas);
         CHECK(placed.id == in.id);
         CHECK(on_demand.tlas.prim_ids[k] == k);

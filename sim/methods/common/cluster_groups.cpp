@@ -347,11 +347,12 @@ FramedCluster frame_cluster(std::span<const Prim> prims, std::span<const std::ui
     out.boxes.reserve(members.size());
     for (const std::uint32_t id : members) {
         const DBox b = box_in(prims[id], stored, DVec3(fo));
+        // The hardware's error bound (frame.h, kObbSlack): the member's
+        // points lie within sqrt(3) * scale of the frame's origin.
         const double scale = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z),
                                        std::abs(b.hi.x), std::abs(b.hi.y), std::abs(b.hi.z)});
-        const DVec3 pad = 0.5 * (b.hi - b.lo) * double(kObbPad) +
-                          DVec3(scale * double(kBoundsUlps) + double(std::numeric_limits<float>::min()));
-        out.boxes.push_back({Vec3(b.lo - pad), Vec3(b.hi + pad)});
+        const DVec3 pad = 0.5 * (b.hi - b.lo) * double(kObbPad) + DVec3(kObbSlack * std::sqrt(3.0) * scale);
+        out.boxes.push_back(outward_bounds(b.lo - pad, b.hi + pad));
     }
     return out;
 }

@@ -88,8 +88,8 @@ template <class Prim>
 
 // A cluster's BLAS frame and its members' boxes in that frame, padded as
 // segment_obb pads an OBB (intersectors/frame.h): by 2^-10 of each half-extent
-// and by a few ulps of the cluster's size, so the hardware's float ray
-// transform never culls a ray that touches a member.
+// and by kObbSlack of the member's distance from the frame's origin, so the
+// hardware's float ray transform never culls a ray that touches a member.
 struct FramedCluster {
     Affine world_from_frame;  // a rotation and a translation
     std::vector<Aabb> boxes;  // one per member, in member order
