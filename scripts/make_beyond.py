@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Collects report.json files into the Markdown tables of docs/beyond.md.
 
-usage: scripts/make_beyond.py hardware RUN_DIR > part1.md
+usage: scripts/make_beyond.py hardware [--update docs/beyond.md] RUN_DIR > part1.md
   Part I (the hardware after Turing): RUN_DIR is the output of
-  build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py).
+  build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py);
+  --update replaces the generated block of that file (between its markers).
 usage: scripts/make_beyond.py [--svg PLOT.svg] RUN_DIR [RUN_DIR ...] > tables.md
   Part II (section "cluster: the paper's future work"):
 Each RUN_DIR is the output of
@@ -195,11 +196,18 @@ def pareto_svg(rs, path):
 def main():
     args = sys.argv[1:]
     if args[:1] == ["hardware"]:
+        update = None
+        if len(args) == 4 and args[1] == "--update":
+            update, args = args[2], args[:1] + args[3:]
         if len(args) != 2:
             sys.exit(__doc__)
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         import beyond_hardware
-        sys.stdout.write(beyond_hardware.report(args[1]))
+        text = beyond_hardware.report(args[1])
+        if update:
+            beyond_hardware.splice(update, text)
+        else:
+            sys.stdout.write(text)
         return
     svg = None
     if len(args) >= 2 and args[0] == "--svg":
