@@ -15,8 +15,13 @@ namespace {
 
 std::string axis_label(const BreakEvenAxis& a) {
     std::string s;
-    for (const Event e : a.events) s += (s.empty() ? "" : a.scale ? ", " : " = ") + std::string(event_name(e));
-    return a.scale ? "x factor on " + s + " (1 = the preset)" : s + " [cycles]";
+    if (a.scale) {  // a factor: name the first and last of a long list
+        const std::string first(event_name(a.events.front())), last(event_name(a.events.back()));
+        s = a.events.size() == 1 ? first : first + (a.events.size() == 2 ? ", " : " .. ") + last;
+        return "factor on " + s + " (1 = the preset)";
+    }
+    for (const Event e : a.events) s += (s.empty() ? "" : " = ") + std::string(event_name(e));
+    return s + " [cycles]";
 }
 
 double axis_value(const BreakEvenAxis& a, int i, int n) {
