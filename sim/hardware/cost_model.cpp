@@ -55,7 +55,9 @@ std::string CostModel::hypothetical_reason(std::string_view method) const {
 }
 
 void parse_hypothetical(const JsonReader& r, CostModel& m) {
-    for (const auto& [method, why] : r.json().items()) {
+    for (const auto& item : r.json().items()) {
+        const std::string method = item.key();  // a plain name: clang 14 cannot capture a structured binding
+        const nlohmann::json& why = item.value();
         if (!why.is_string() || why.get<std::string>().empty())
             r.fail(method, "expected why this method is hypothetical on this machine, with its source");
         std::erase_if(m.hypothetical, [&](const auto& h) { return h.first == method; });
