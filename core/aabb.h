@@ -43,6 +43,24 @@ struct Aabb {
     }
 };
 
+// Bounds of the exact box [lo, hi] (computed in double from float inputs,
+// a few double roundings at most) as the smallest float box around it: both
+// ends widened by 2^-48 of the larger magnitude (far more than those
+// roundings, far less than a float ulp) and rounded outward.
+[[nodiscard]] inline Aabb outward_bounds(const DVec3& lo, const DVec3& hi) {
+    Aabb b;
+    for (int i = 0; i < 3; ++i) {
+        if (!(lo[i] <= hi[i])) return {};  // NaN or empty
+        const double m = std::max(std::abs(lo[i]), std::abs(hi[i])) * 0x1p-48;
+        const double l = lo[i] - m, h = hi[i] + m;
+        b.lo[i] = static_cast<float>(l);
+        b.hi[i] = static_cast<float>(h);
+        if (double(b.lo[i]) > l) b.lo[i] = std::nextafter(b.lo[i], -kInfinity);
+        if (double(b.hi[i]) < h) b.hi[i] = std::nextafter(b.hi[i], kInfinity);
+    }
+    return b;
+}
+
 [[nodiscard]] inline Aabb merge(Aabb a, const Aabb& b) {
     a.extend(b);
     return a;

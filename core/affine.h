@@ -47,8 +47,7 @@ struct Affine {
     // their magnitude for the double roundings and rounded outward, so at
     // most an ulp of the position wider than the image.
     [[nodiscard]] Aabb box(const Aabb& b) const {
-        Aabb out;
-        if (b.empty()) return out;
+        if (b.empty()) return {};
         const glm::dmat3 m(linear);
         const DVec3 t(translation);
         DVec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
@@ -58,15 +57,7 @@ struct Affine {
             const DVec3 q = m * p + t;
             lo = glm::min(lo, q), hi = glm::max(hi, q);
         }
-        for (int i = 0; i < 3; ++i) {
-            const double pad = std::max(std::abs(lo[i]), std::abs(hi[i])) * 0x1p-48;
-            const double l = lo[i] - pad, h = hi[i] + pad;
-            out.lo[i] = static_cast<float>(l);
-            out.hi[i] = static_cast<float>(h);
-            if (double(out.lo[i]) > l) out.lo[i] = std::nextafter(out.lo[i], -kInfinity);
-            if (double(out.hi[i]) < h) out.hi[i] = std::nextafter(out.hi[i], kInfinity);
-        }
-        return out;
+        return outward_bounds(lo, hi);
     }
 };
 

@@ -42,24 +42,6 @@ struct Basis {
             Vec3(b, sign + n.y * n.y * a, -n.y)};
 }
 
-// Bounds of the exact box [lo, hi] (computed in double from float inputs,
-// a few double roundings at most) as the smallest float box around it: both
-// ends widened by 2^-48 of the larger magnitude (far more than those
-// roundings, far less than a float ulp) and rounded outward.
-[[nodiscard]] inline Aabb outward_bounds(const DVec3& lo, const DVec3& hi) {
-    Aabb b;
-    for (int i = 0; i < 3; ++i) {
-        if (!(lo[i] <= hi[i])) return {};  // NaN or empty
-        const double m = std::max(std::abs(lo[i]), std::abs(hi[i])) * 0x1p-48;
-        const double l = lo[i] - m, h = hi[i] + m;
-        b.lo[i] = static_cast<float>(l);
-        b.hi[i] = static_cast<float>(h);
-        if (double(b.lo[i]) > l) b.lo[i] = std::nextafter(b.lo[i], -kInfinity);
-        if (double(b.hi[i]) < h) b.hi[i] = std::nextafter(b.hi[i], kInfinity);
-    }
-    return b;
-}
-
 // The error bound of an OBB (u = 2^-24, a float's unit roundoff). A surface
 // point x at distance |x - c| from the box centre c, reached by a ray at
 // parameter t with direction d, lands in the unit box as the hardware

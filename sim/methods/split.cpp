@@ -26,8 +26,6 @@ namespace {
 constexpr int kMaxDepth = 3;
 constexpr double kGain = 0.7;
 
-Aabb outward(const DVec3& lo, const DVec3& hi) { return outward_bounds(lo, hi); }
-
 double half_area(const Aabb& b) { return 0.5 * double(b.surface_area()); }
 
 // A straight primitive's part between axis parameters a and b: spheres of
@@ -49,7 +47,7 @@ struct Straight {
             if (l2 > 0.0)
                 ea = eb = r0 * (glm::sqrt(DVec3(a2.y + a2.z, a2.z + a2.x, a2.x + a2.y) / l2) + 0x1p-40);
         }
-        return outward(glm::min(pa - ea, pb - eb), glm::max(pa + ea, pb + eb));
+        return outward_bounds(glm::min(pa - ea, pb - eb), glm::max(pa + ea, pb + eb));
     }
     void pieces(double a, double b, int depth, std::vector<Aabb>& out) const {
         const Aabb whole = box(a, b);
@@ -75,7 +73,7 @@ struct CurvePart {
         DVec3 lo(kInfinity), hi(-kInfinity);
         const double rad = std::max({r[0], r[1], r[2], r[3], 0.0});
         for (const DVec3& q : p) lo = glm::min(lo, q - rad), hi = glm::max(hi, q + rad);
-        return outward(lo, hi);
+        return outward_bounds(lo, hi);
     }
     [[nodiscard]] std::pair<CurvePart, CurvePart> halves() const {
         CurvePart l, h;

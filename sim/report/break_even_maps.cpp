@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 
 namespace rtc {
 
@@ -30,11 +31,10 @@ double axis_value(const BreakEvenAxis& a, int i, int n) {
 
 }  // namespace
 
-std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel& preset, bool& warp) {
+std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset) {
     std::array<double, kEventCount> c{};
-    warp = preset.execution.warp() && m.frame.warp_trace.waves() > 0;
-    if (warp) {
-        (void)m.frame.warp_trace.price(preset, &c);
+    if (warp_preset) {
+        (void)m.frame.warp_trace.price(*warp_preset, &c);
     } else {
         for (std::size_t i = 0; i < kEventCount; ++i) c[i] = static_cast<double>(m.frame.totals.n[i]);
     }
@@ -47,16 +47,8 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
         const CostModel* base = nullptr;
         for (const CostModel& c : run.costs)
             if (c.name == spec.preset) base = &c;
-        if (!base)
-            throw InputError(run.config.file + ": /break_even: preset \"" + spec.preset +
-                             "\" is not one of the run's cost presets");
-        // An axis over an event the preset does not price (a program by name
-        // under operation-class pricing) would add its cost on top of the
-        // operations that already price that program.
-        for (const BreakEvenAxis* axis : {&spec.x, &spec.y})
-            for (const Event e : axis->events)
-                if (!base->prices(e))
-                    throw InputError(run.config.file + ": /break_even: map \"" + spec.name + "\": " + base->unpriced(e));
+        // parse_run_config checked the preset is the run's and prices every axis event.
+        if (!base) throw std::logic_error("break-even map \"" + spec.name + "\": its preset was not checked");
         BreakEvenGrid g;
         g.nx = g.ny = spec.cells;
         g.x_lo = spec.x.min, g.x_hi = spec.x.max, g.y_lo = spec.y.min, g.y_hi = spec.y.max;
@@ -84,11 +76,8 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
         bool warp = base->execution.warp();
         for (const MethodRun* m : methods) warp = warp && (!m || m->frame.warp_trace.waves() > 0);
         std::vector<EffectiveCounts> linear(methods.size(), EffectiveCounts{});
-        for (std::size_t k = 0; k < methods.size(); ++k) {
-            if (!methods[k]) continue;
-            bool w = warp;
-            linear[k] = warp ? break_even_counts(*methods[k], *base, w) : break_even_counts(*methods[k], CostModel{}, w);
-        }
+        for (std::size_t k = 0; k < methods.size(); ++k)
+            if (methods[k]) linear[k] = break_even_counts(*methods[k], warp ? base : nullptr);
         g.caption += warp ? "\ncycles: warp model, first order around the mark (exact there)" : "\ncycles: per-ray sum of every ray's events";
         g.has_mark = true;
         g.mark_x = spec.x.scale ? 1.0 : (*base)[spec.x.events.front()];

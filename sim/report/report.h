@@ -64,10 +64,10 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
 // the files written.
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
 // A method's cycles as a linear function of the costs, as the maps price
-// it: under a warp preset whose waves were recorded, the effective counts at
-// the preset's own costs (exact there, first order around it); otherwise
-// (per-ray preset, or waves not recorded) its event totals. `warp` says which.
-[[nodiscard]] std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel& preset, bool& warp);
+// it: given a warp preset (whose waves the run recorded), the effective
+// counts of the method's waves at that preset's own costs (exact there,
+// first order around it); given none, its event totals (the per-ray sum).
+[[nodiscard]] std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset);
 
 // For each numeric sweep axis: speedup of every non-ref method against it, one
 // line per value of the other axes (e.g. speedup vs tilt, one line per N);

@@ -214,9 +214,9 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
             CAPTURE(m.method);
             CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles()).epsilon(1e-12));
             // Break-even maps price a method linearly around the preset: exact at it.
-            bool warp = false;
-            const auto linear = break_even_counts(m, r.costs[p], warp);
-            CHECK(warp);
+            REQUIRE(m.frame.warp_trace.waves() > 0);  // recorded (record_warps)
+            CHECK(r.costs[p].execution.warp());
+            const auto linear = break_even_counts(m, &r.costs[p]);
             double at_preset = 0.0;
             for (std::size_t i = 0; i < kEventCount; ++i) at_preset += linear[i] * r.costs[p].cycles[i];
             CHECK(at_preset == doctest::Approx(m.priced[p].total_cycles).epsilon(1e-12));

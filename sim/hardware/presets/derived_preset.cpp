@@ -58,15 +58,14 @@ CostModel parse_derived_preset(const JsonReader& r) {
     if (g_depth >= kMaxDepth)
         r.fail("derived_from", "presets derive from each other more than " + std::to_string(kMaxDepth) +
                                    " deep (a cycle?)");
-    CostModel m;
-    ++g_depth;
-    try {
-        m = load_cost_model(base_file);
-    } catch (...) {
-        --g_depth;
-        throw;
-    }
-    --g_depth;
+    struct Depth {  // one level deeper while the base loads, also when it throws
+        Depth() { ++g_depth; }
+        ~Depth() { --g_depth; }
+    };
+    CostModel m = [&] {
+        const Depth deeper;
+        return load_cost_model(base_file);
+    }();
 
     m.derived_from = m.name;
     m.name = r.string("name", std::nullopt);
