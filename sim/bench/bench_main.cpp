@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
+#include "sim/bench/embree_bench.h"
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
 #include "sim/util/process_memory.h"
@@ -50,12 +51,16 @@ constexpr const char* kHelp =
     "                 --warp-preset (default turing-calibrated)\n"
     "  --warp-preset P the warp preset of --execution warp, by name or path\n"
     "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
+    "  --embree       trace each case's rays through Embree 3 too (ref, obb; default cases\n"
+    "                 1,2,3): rates side by side, timed alternately, their ratio, and a\n"
+    "                 check of the hits (exit 1 if they differ; 77 if built without Embree)\n"
     "  --help         this text\n"
     "Options take --opt value or --opt=value.\n";
 
 struct Cli {
     std::set<int> cases{1, 2, 3, 4, 5};
     bool scale = false;
+    bool embree = false;  // --embree
     BenchOptions bench;
     std::string data = "../shared/data";
     std::string json_file;
@@ -88,11 +93,12 @@ Cli parse(int argc, char** argv) {
     Cli cli;
     CLI::App app{"bench"};
     app.set_help_flag();  // kHelp is the help text
-    bool help = false, scale = false;
+    bool help = false, scale = false, embree = false;
     std::string cases, threads, repeat, data, methods, execution, warp_preset = "turing-calibrated", pixels, json;
     std::vector<std::string> compare;
     app.add_flag("-h,--help", help);
     app.add_flag("--scale", scale);
+    app.add_flag("--embree", embree);
     for (const auto& [name, value] :
          {std::pair{"--cases", &cases}, {"--threads", &threads}, {"--repeat", &repeat}, {"--data", &data},
           {"--methods", &methods}, {"--execution", &execution}, {"--warp-preset", &warp_preset},
@@ -135,6 +141,8 @@ Cli parse(int argc, char** argv) {
         return out;
     };
     cli.scale = scale;
+    cli.embree = embree;
+    if (embree && !given("--cases")) cli.cases = {1, 2, 3};
     if (given("--cases")) {
         cli.cases.clear();
         for (const std::string& item : items(value("--cases", cases))) {
@@ -234,6 +242,12 @@ int main(int argc, char** argv) {
     try {
         Cli cli = parse(argc, argv);
         if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);
+        if (cli.embree && !embree_built()) {
+            std::printf("bench: --embree: this bench was built without Embree 3 (apt-get install "
+                        "libembree-dev, then configure again)\n");
+            return 77;  // ctest's SKIP_RETURN_CODE for the Embree test
+        }
+        bool hits_agree = true;
         std::vector<BenchCase> cases;
         if (cli.scale) {
             cases.push_back(scale_case());
@@ -278,6 +292,10 @@ int main(int argc, char** argv) {
             std::fflush(stdout);  // before the builds' progress lines on stderr
             for (const BenchRun& run : c.runs) {
                 if (run.config["methods"].empty()) continue;  // filtered out by --methods
+                if (cli.embree) {
+                    hits_agree = compare_with_embree(run, cli.bench) && hits_agree;
+                    continue;
+                }
                 const RunFigures r = run_bench(run, cli.bench);
                 print_run(r);
                 jc["runs"].push_back(to_json(r));
@@ -297,7 +315,8 @@ int main(int argc, char** argv) {
             f << out.dump(2) << "\n";
             if (!f) throw InputError("bench: cannot write " + cli.json_file);
         }
-        return 0;
+        if (!hits_agree) std::printf("bench: rtcsim and Embree disagree on the hits (HITS DIFFER above)\n");
+        return hits_agree ? 0 : 1;
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;

@@ -24,22 +24,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Not inlined: `valgrind --tool=callgrind --toggle-collect='*bench_trace_frame*'`
-// counts the traces' instructions only (sim/bench/callgrind_per_ray.sh toggles
-// on BuiltMethod::run instead, which older bench binaries have too).
-[[gnu::noinline]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
-                                                const RayWorkload& frame, const TraceOptions& trace,
-                                                unsigned threads, const CostModel* warp) {
-    FrameOptions fo;
-    fo.threads = threads;
-    fo.progress = false;
-    if (warp) {
-        fo.warp = &warp->execution;
-        fo.warp_presets = {warp};
-    }
-    return method.run(g, frame, trace, fo);
-}
-
 // Best and median rate of `repeat` traces; every trace must count the same events.
 ThreadRate time_traces(const BuiltMethod& method, const Geometry& g, const RayWorkload& frame,
                        const TraceOptions& trace, unsigned threads, int repeat, MethodFigures& m,
@@ -68,31 +52,52 @@ ThreadRate time_traces(const BuiltMethod& method, const Geometry& g, const RayWo
 
 }  // namespace
 
+// Not inlined: `valgrind --tool=callgrind --toggle-collect='*bench_trace_frame*'`
+// counts the traces' instructions only (sim/bench/callgrind_per_ray.sh toggles
+// on BuiltMethod::run instead, which older bench binaries have too).
+[[gnu::noinline]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
+                                                const RayWorkload& frame, const TraceOptions& trace,
+                                                unsigned threads, const CostModel* warp) {
+    FrameOptions fo;
+    fo.threads = threads;
+    fo.progress = false;
+    if (warp) {
+        fo.warp = &warp->execution;
+        fo.warp_presets = {warp};
+    }
+    return method.run(g, frame, trace, fo);
+}
+
 std::uint64_t peak_rss_bytes() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return static_cast<std::uint64_t>(u.ru_maxrss) * 1024;  // Linux: KiB
 }
 
+LoadedRun load_run(const BenchRun& run) {
+    LoadedRun out{parse_run_config(run.config, "bench:" + run.label), {}, {}, 0.0};
+    const auto t_load = std::chrono::steady_clock::now();
+    {
+        const Scene scene = load_scene(out.config.scene);
+        out.geometry = make_geometry(scene, out.config.kind, out.config.subdivision);
+    }  // the strands go now: the scale case needs the memory
+    out.load_seconds = seconds_since(t_load);
+    out.frame.camera = make_camera(out.config.workload, geometry_bounds(out.geometry));
+    out.frame.path = path_options(out.config.workload);
+    return out;
+}
+
 RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
-    const RunConfig c = parse_run_config(run.config, "bench:" + run.label);
+    LoadedRun loaded = load_run(run);
+    const RunConfig& c = loaded.config;
+    const Geometry& geometry = loaded.geometry;
+    const RayWorkload& frame = loaded.frame;
     RunFigures out;
     out.label = run.label;
     out.kind = std::string(kind_name(c.kind));
-
-    const auto t_load = std::chrono::steady_clock::now();
-    Geometry geometry;
-    {
-        const Scene scene = load_scene(c.scene);
-        geometry = make_geometry(scene, c.kind, c.subdivision);
-    }  // the strands go now: the scale case needs the memory
-    out.load_seconds = seconds_since(t_load);
+    out.load_seconds = loaded.load_seconds;
     out.primitives = geometry.primitive_count();
     out.triangles = geometry.triangles.size();
-
-    RayWorkload frame;
-    frame.camera = make_camera(c.workload, geometry_bounds(geometry));
-    frame.path = path_options(c.workload);
     std::vector<unsigned> thread_counts;
     for (const unsigned t : o.threads) thread_counts.push_back(t ? t : hardware_threads());
     std::optional<CostModel> warp;

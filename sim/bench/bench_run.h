@@ -5,6 +5,10 @@
 
 #include "core/sinks.h"
 #include "sim/bench/bench_cases.h"
+#include "sim/config/run_config.h"
+#include "sim/execution/frame.h"
+#include "sim/methods/common/geometry.h"
+#include "sim/methods/method.h"
 
 #include <cstdint>
 #include <string>
@@ -54,6 +58,21 @@ struct RunFigures {
 };
 
 [[nodiscard]] RunFigures run_bench(const BenchRun& run, const BenchOptions& options);
+
+// A run's typed plan, its geometry and its rays, made as simulate makes them.
+struct LoadedRun {
+    RunConfig config;
+    Geometry geometry;
+    RayWorkload frame;
+    double load_seconds = 0.0;
+};
+[[nodiscard]] LoadedRun load_run(const BenchRun& run);
+
+// One timed trace of `frame` with counting sinks, as run_bench times it
+// (warp: the preset of --execution warp, or null).
+[[nodiscard]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
+                                            const RayWorkload& frame, const TraceOptions& trace,
+                                            unsigned threads, const CostModel* warp);
 
 // Peak resident set of the process so far (getrusage ru_maxrss), bytes.
 [[nodiscard]] std::uint64_t peak_rss_bytes();
