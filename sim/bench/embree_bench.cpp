@@ -99,7 +99,7 @@ bool compare_method(const std::string& name, const LoadedRun& run, const std::ve
             ratio.push_back(a / b);
         }
         const Spread x = spread(ours), y = spread(theirs), q = spread(ratio);
-        std::printf("      %7u  %10.3f [%6.3f-%6.3f]  %10.3f [%6.3f-%6.3f]  %10.2fx [%5.2f-%5.2f]\n", t, x.median,
+        std::printf("      %7u  %10.4g [%6.4g-%6.4g]  %10.4g [%6.4g-%6.4g]  %10.2fx [%5.2f-%5.2f]\n", t, x.median,
                     x.lo, x.hi, y.median, y.lo, y.hi, q.median, q.lo, q.hi);
     }
     return c.ok();

@@ -128,7 +128,7 @@ EmbreeCapsules::~EmbreeCapsules() {
 }
 
 void EmbreeCapsules::trace(std::span<const Ray> rays, std::span<EmbreeHit> hits, unsigned threads) const {
-    constexpr std::size_t kBlock = 4096;  // rays per hand-out: as rtcsim's rows of 800
+    constexpr std::size_t kBlock = 256;  // rays per hand-out: small frames still spread over the threads
     parallel_for((rays.size() + kBlock - 1) / kBlock, threads, [&](std::size_t block, unsigned) {
         TraceContext ctx;
         rtcInitIntersectContext(&ctx.context);
