@@ -170,6 +170,10 @@ Cli parse(int argc, char** argv) {
         throw InputError("bench: --execution: expected per_ray or warp, got \"" + execution + "\"");
     if (given("--pixels")) cli.pixels = number("--pixels", pixels, 1);
     if (given("--json")) cli.json_file = value("--json", json);
+    // Embree's side is per-ray work on the standard cases' scenes.
+    if (embree && scale) throw InputError("bench: --embree traces the standard cases, not --scale");
+    if (embree && execution == "warp")
+        throw InputError("bench: --embree times per-ray execution (drop --execution warp)");
     // A preset by name (searched like simulate's) or by path.
     if (execution == "warp")
         cli.bench.warp_preset = resolve_preset(value("--warp-preset", warp_preset), "bench", "--warp-preset");
