@@ -161,7 +161,7 @@ def reference_table(rs):
         r = next((r for r in rs if r["scene"] == scene and r["runnable"]), None)
         if r:
             lines.append("| %s | %s | %s | %s | %.1f MiB |" % (
-                scene, format(r["prims"], ","), " / ".join(format(float(fmt(c, 4)), ",") for c in r["ref_cyc_all"]),
+                scene, format(r["prims"], ","), " / ".join(format(c, ",.4g") for c in r["ref_cyc_all"]),
                 fmt(r["ref_is"]), r["ref_mem"]["memory-optix7"] / MIB))
     return "\n".join(lines)
 
