@@ -10,6 +10,7 @@ cycles by unit (methods.<m>.cycles.<preset>.warp.breakdown), memory
 """
 import glob
 import json
+import math
 import os
 
 UNITS = [("shader", "shader (incl. AMD's loop)"), ("rt_unit", "RT unit"), ("hand_off", "hand-off"),
@@ -138,7 +139,7 @@ def recommendations(runs, kinds=("capsule", "link")):
     """Per preset and scene: the fastest method the preset's hardware runs (not
     hypothetical), its interval and memory overhead, and what obb gives."""
     presets = preset_names(runs[0])
-    lines = ["| preset | scene | fastest runnable method | its memory overhead | obb (the masquerade) |",
+    lines = ["| preset | scene | fastest runnable method | its memory: total, over ref | obb (the masquerade), its memory |",
              "|---|---|---|---|---|"]
     for p in presets:
         for r in runs:
@@ -153,8 +154,32 @@ def recommendations(runs, kinds=("capsule", "link")):
                 if v > best_s:
                     best, best_s = method, v
             over = r["memory_overhead_percent"].get(best, 0.0) if best != "ref" else 0.0
-            lines.append("| %s | %s | %s %s | %+.0f%% | %s |" % (p, label(r), best, cell(r, best, p), over,
-                                                               cell(r, "obb", p)))
+            mib = r["methods"][best]["memory_bytes"]["total"] / MIB
+            obb_mib = r["methods"]["obb"]["memory_bytes"]["total"] / MIB
+            lines.append("| %s | %s | %s %s | %.1f MiB, %+.0f%% | %s, %.1f MiB |" % (
+                p, label(r), best, cell(r, best, p), mib, over, cell(r, "obb", p), obb_mib))
+    return "\n".join(lines)
+
+
+def break_even_table(runs, kinds=("capsule",)):
+    """Per run and map (report.json's break_even): the winner at the preset's
+    own costs with its lead and the lead's 90 % interval over the cost draws,
+    each method's share of the map, and the share of cells whose winner the
+    draws leave in doubt (the hatched band of the picture)."""
+    lines = ["| run | map (preset) | winner at the mark, lead [90 %] | share of the map won | in doubt |",
+             "|---|---|---|---|---:|"]
+    for r in runs:
+        if label(r).split(" ")[0] not in kinds:
+            continue
+        for m in r.get("break_even", []):
+            mark = m["mark"]
+            lead = "%.3gx" % mark["lead"] if mark["lead"] is not None and math.isfinite(mark["lead"]) else "alone"
+            if mark.get("lead_interval"):
+                lead += " [%.3g-%.3g]" % tuple(mark["lead_interval"])
+            share = ", ".join("%s %.0f%%" % (k, 100 * v) for k, v in sorted(m["winner_share"].items(), key=lambda kv: -kv[1]))
+            doubt = "%.0f%%" % (100 * m["uncertain_share"]) if m.get("uncertain_share") is not None else "no draws"
+            lines.append("| %s | %s (%s) | %s %s | %s | %s |" % (label(r), m["name"], m["preset"], mark["winner"], lead,
+                                                               share, doubt))
     return "\n".join(lines)
 
 
@@ -162,7 +187,9 @@ def report(directory):
     runs = load(directory)
     parts = [provenance(runs), "", "### Speedup over ref, 90 % interval", "", speedup_table(runs), "",
              "### Where the cycles go", "", decomposition(runs), "### Memory on the Sintel hair (memory preset of the run)",
-             "", memory_table(runs), "", "### Which method to build", "", recommendations(runs)]
+             "", memory_table(runs), "", "### Which method to build", "", recommendations(runs), "",
+             "### Where each stops paying: the break-even maps at the mark, and the band the draws leave in doubt", "",
+             break_even_table(runs)]
     return "\n".join(parts) + "\n"
 
 

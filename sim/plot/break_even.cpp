@@ -26,6 +26,14 @@ std::string number(double v) {
     return buf;
 }
 
+// Diagonal lines on the image's own grid, so that neighbouring cells join
+// into one hatched band.
+void hatch(Image& img, int x0, int y0, int w, int h) {
+    for (int y = y0; y < y0 + h; ++y)
+        for (int x = x0; x < x0 + w; ++x)
+            if ((x + y) % 5 == 0) img.fill_rect(x, y, 1, 1, {40, 40, 40});
+}
+
 }  // namespace
 
 Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
@@ -34,7 +42,9 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
         throw std::invalid_argument("render_break_even: grid size mismatch");
     const int cp = std::max(1, o.cell_pixels), map_w = g.nx * cp, map_h = g.ny * cp;
     const int left = 70, top = 40, legend_w = 190, bottom = 86;  // three caption lines
-    Image img(left + map_w + 20 + legend_w, top + map_h + bottom, {255, 255, 255});
+    // The legend: its methods, "none runs", the mark and the hatch (small maps: taller than the map).
+    const int legend_h = 44 + static_cast<int>(g.methods.size() + 1) * 18 + 20 + 40;
+    Image img(left + map_w + 20 + legend_w, top + std::max(map_h + bottom, legend_h), {255, 255, 255});
     draw_text(img, 10, 8, g.title, {{0, 0, 0}, 2});
     const double full = std::log(std::max(o.full_margin, 1.0001));
     for (int y = 0; y < g.ny; ++y)
@@ -47,6 +57,7 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
                 c = blend(kPalette[static_cast<std::size_t>(w) % std::size(kPalette)], 0.25 + 0.75 * std::clamp(m, 0.0, 1.0));
             }
             img.fill_rect(left + x * cp, top + (g.ny - 1 - y) * cp, cp, cp, c);
+            if (g.uncertain(i)) hatch(img, left + x * cp, top + (g.ny - 1 - y) * cp, cp, cp);
         }
     img.stroke_rect(left - 1, top - 1, map_w + 2, map_h + 2, {0, 0, 0});
     // Five ticks per axis, evenly spaced on the log axes, with tick marks.
@@ -95,6 +106,15 @@ Image render_break_even(const BreakEvenGrid& g, const BreakEvenOptions& o) {
         img.fill_rect(lx + 1, ly + 23, 13, 3, {0, 0, 0});
         img.fill_rect(lx + 6, ly + 18, 3, 13, {0, 0, 0});
         draw_text(img, lx + 36, ly + 20, "the preset's costs", {});
+    }
+    if (!g.band_lo.empty()) {  // the interval's effect
+        const int hy = ly + 38;
+        img.fill_rect(lx, hy, 14, 12, {255, 255, 255});
+        hatch(img, lx, hy, 14, 12);
+        img.stroke_rect(lx, hy, 14, 12, {40, 40, 40});
+        draw_text(img, lx + 20, hy + 2, "winner in doubt: the 90 %", {});
+        draw_text(img, lx + 20, hy + 14, " band of its lead over " + std::to_string(g.draws), {});
+        draw_text(img, lx + 20, hy + 26, " cost draws reaches 1.0", {});
     }
     if (o.scale <= 1) return img;
     Image big(img.width * o.scale, img.height * o.scale, {255, 255, 255});

@@ -211,6 +211,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     }
     j["uncertainty"] = why;
     j["memory_overhead_percent"] = overhead;
+    if (!run.config.break_even.empty()) j["break_even"] = break_even_json(run);
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
                          {"total", run.total_seconds}};

@@ -3,6 +3,7 @@
 // and the render (PNG), and plots over a sweep's numeric axes (SVG).
 #pragma once
 
+#include "sim/plot/break_even.h"
 #include "sim/run/simulation.h"
 #include "sim/util/table.h"
 
@@ -59,15 +60,26 @@ std::vector<std::string> write_arrays(const RunResult& run, const std::string& d
 // cores). No-op for ray-file workloads.
 void write_images(const RunResult& run, const std::string& dir, unsigned threads = 0);
 
-// The config's break-even maps for this run (break_even_<name>.png in `dir`):
-// per cell of two swept costs, the cheapest method and its margin. Returns
-// the files written.
+// The config's break-even maps for this run (break_even_<name>.png and
+// break_even_<name>.json in `dir`): per cell of two swept costs, the cheapest
+// method, its margin and whether the draws leave it in doubt. Returns the
+// files written.
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
 // A method's cycles as a linear function of the costs, as the maps price
 // it: given a warp preset (whose waves the run recorded), the effective
 // counts of the method's waves at that preset's own costs (exact there,
 // first order around it); given none, its event totals (the per-ray sum).
 [[nodiscard]] std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset);
+// One map's cells (what write_break_even_maps draws): per cell the cheapest
+// method, its lead, and the lead's 90 % band over the run's draws of the
+// preset (uncertainty.draws, same seed as the speedup intervals), each draw
+// with the axes set on it (a factor axis scales the draw's own cost).
+[[nodiscard]] BreakEvenGrid break_even_grid(const RunResult& run, const BreakEvenSpec& spec);
+// The cells as break_even_<name>.json (rounded to 4 digits), and report.json's
+// "break_even": per map, each method's share of the cells, the share whose
+// winner the draws leave in doubt, and the winner and lead interval at the mark.
+[[nodiscard]] nlohmann::ordered_json break_even_cells_json(const BreakEvenGrid& g);
+[[nodiscard]] nlohmann::ordered_json break_even_json(const RunResult& run);
 
 // For each numeric sweep axis: speedup of every non-ref method against it, one
 // line per value of the other axes (e.g. speedup vs tilt, one line per N);
