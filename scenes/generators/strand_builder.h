@@ -4,16 +4,23 @@
 #pragma once
 
 #include "core/input_error.h"
+#include "scenes/limits.h"
 #include "scenes/scene.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace rtc {
 
-// Coordinates and radii beyond this are rejected: boxes, squared distances
-// and camera framing stay finite in float (1e18^2 = 1e36 < FLT_MAX).
-inline constexpr float kMaxCoordinate = 1e18f;
+namespace detail {
+// A float as "1e+13" rather than std::to_string's "9999999827968.000000".
+inline std::string shown(float x) {
+    std::ostringstream os;
+    os << x;
+    return os.str();
+}
+}  // namespace detail
 
 class StrandBuilder {
 public:
@@ -27,11 +34,12 @@ public:
                              std::to_string(out_.strand_count()));
         if (std::abs(p.x) > kMaxCoordinate || std::abs(p.y) > kMaxCoordinate ||
             std::abs(p.z) > kMaxCoordinate)
-            throw InputError(file_ + ": " + where() + ": coordinate beyond +-1e18 in strand " +
+            throw InputError(file_ + ": " + where() + ": coordinate beyond +-" + kMaxCoordinateText + " in strand " +
                              std::to_string(out_.strand_count()));
         if (!std::isfinite(radius) || radius < 0.0f || radius > kMaxCoordinate)
-            throw InputError(file_ + ": " + where() + ": bad radius " + std::to_string(radius) +
-                             " in strand " + std::to_string(out_.strand_count()));
+            throw InputError(file_ + ": " + where() + ": bad radius " + detail::shown(radius) +
+                             " in strand " + std::to_string(out_.strand_count()) + " (expected 0 to " +
+                             kMaxCoordinateText + ")");
         out_.points.push_back(p);
         out_.radii.push_back(radius);
     }

@@ -10,6 +10,7 @@
 #include "scenes/loaders/loaders.h"
 #include "scenes/loaders/ply_check.h"
 #include "scenes/generators/strand_builder.h"
+#include "scenes/limits.h"
 
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
@@ -69,7 +70,7 @@ void add_node(const aiScene& scene, const aiNode& node, const aiMatrix4x4& paren
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || std::abs(p.x) > kMaxCoordinate ||
                 std::abs(p.y) > kMaxCoordinate || std::abs(p.z) > kMaxCoordinate)
                 throw InputError(file + ": mesh \"" + std::string(mesh.mName.C_Str()) + "\" vertex " + std::to_string(v) +
-                                 " is not finite or lies beyond +-1e18");
+                                 " is not finite or lies beyond +-" + kMaxCoordinateText);
             out.vertices.emplace_back(p.x, p.y, p.z);
         }
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {

@@ -7,6 +7,7 @@
 #include "scenes/loaders/file_bytes.h"
 #include "scenes/loaders/loaders.h"
 #include "scenes/generators/strand_builder.h"
+#include "scenes/limits.h"
 #include "scenes/loaders/text_lines.h"
 
 #include <tiny_obj_loader.h>
@@ -66,7 +67,7 @@ CleanObj clean_obj(const std::vector<std::uint8_t>& bytes, const std::string& fi
             for (std::size_t i = 1; i < 4; ++i) {
                 const auto x = text.number<float>(i, "vertex coordinate");
                 if (!std::isfinite(x)) text.fail("non-finite vertex coordinate");
-                if (std::abs(x) > kMaxCoordinate) text.fail("vertex coordinate beyond +-1e18");
+                if (std::abs(x) > kMaxCoordinate) text.fail(std::string("vertex coordinate beyond +-") + kMaxCoordinateText);
                 out.text += ' ';
                 out.text += t[i];
             }

@@ -69,11 +69,11 @@ void parse_hair(const JsonReader& j, SceneDesc& s) {
     d.sphere_radius = j.length("sphere_radius", d.sphere_radius);
     d.sphere_center = to_vec3(j.vec3("sphere_center", std::array<double, 3>{0, 0, 0}));
     for (const float x : {d.sphere_center.x, d.sphere_center.y, d.sphere_center.z})
-        if (std::abs(x) > JsonReader::kMaxLength) j.fail("sphere_center", "components must lie in [-1e18, 1e18]");
+        if (std::abs(x) > JsonReader::kMaxLength) j.fail("sphere_center", std::string("components must lie within +-") + kMaxCoordinateText);
     d.lock_radius = j.length("lock_radius", d.lock_radius);
     d.lock_center = to_vec3(j.vec3("lock_center", std::array<double, 3>{0, 0, 0}));
     for (const float x : {d.lock_center.x, d.lock_center.y, d.lock_center.z})
-        if (std::abs(x) > JsonReader::kMaxLength) j.fail("lock_center", "components must lie in [-1e18, 1e18]");
+        if (std::abs(x) > JsonReader::kMaxLength) j.fail("lock_center", std::string("components must lie within +-") + kMaxCoordinateText);
     d.lock_axis = to_vec3(j.vec3("lock_axis", std::array<double, 3>{0, -1, 0}));
     if (!(glm::length(d.lock_axis) > 0.0f)) j.fail("lock_axis", "must not be zero");
     const std::string style = j.choice("style", "straight", {"straight", "wavy", "curly"});
@@ -155,7 +155,7 @@ Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c) {
     for (float& r : loaded.strands.radii) {
         r = static_cast<float>(r * c.radius_scale);
         if (!(r <= JsonReader::kMaxLength))
-            fail_at(s, c.key + "/radius_scale", describe(c.radius_scale) + " makes a radius exceed 1e18");
+            fail_at(s, c.key + "/radius_scale", describe(c.radius_scale) + " makes a radius exceed " + kMaxCoordinateText);
     }
     if (c.follow.per_guide > 0) return add_follow_hairs(loaded.strands, c.follow);
     return std::move(loaded.strands);

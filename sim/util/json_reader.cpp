@@ -88,7 +88,7 @@ float JsonReader::length(std::string_view key, std::optional<double> fallback, b
     const bool ok = std::isfinite(x) && ((allow_zero && x == 0.0) || (x >= kMinLength && x <= kMaxLength));
     if (!ok)
         fail(key, std::string(allow_zero ? "expected 0 or a positive number" : "expected a positive number") +
-                      " in [1e-18, 1e18] (a length), got " + describe(*v));
+                      " in [1e-18, " + kMaxCoordinateText + "] (a length), got " + describe(*v));
     return static_cast<float>(x);
 }
 

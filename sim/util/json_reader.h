@@ -7,6 +7,8 @@
 
 #include "core/input_error.h"
 
+#include "scenes/limits.h"
+
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -52,8 +54,9 @@ public:
     [[nodiscard]] double positive(std::string_view key, std::optional<double> fallback) const;
     // A scene length (radius, length, spread...): in [kMinLength, kMaxLength],
     // or 0 when `allow_zero`, so boxes, squared distances and camera framing
-    // stay finite and non-zero in float.
-    static constexpr double kMinLength = 1e-18, kMaxLength = 1e18;
+    // stay finite and non-zero in float; the top is the loaders' limit, the
+    // range every method can build (scenes/limits.h).
+    static constexpr double kMinLength = 1e-18, kMaxLength = kMaxCoordinate;
     [[nodiscard]] float length(std::string_view key, std::optional<double> fallback,
                                bool allow_zero = false) const;
     [[nodiscard]] long long integer(std::string_view key, std::optional<long long> fallback,

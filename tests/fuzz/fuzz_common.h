@@ -18,17 +18,21 @@
 
 namespace rtc::fuzz {
 
-// A scratch file, unique per process and suffix, rewritten for every input.
-inline std::string write_scratch(const std::uint8_t* data, std::size_t size, const char* suffix) {
-    // /dev/shm (memory) when there is one: rewriting a file on a virtual
-    // disk costs milliseconds, 10-100x the loader itself.
+// Where scratch files go: /dev/shm (memory) when there is one, since
+// rewriting a file on a virtual disk costs milliseconds, 10-100x the loader.
+inline const std::string& scratch_dir() {
     static const std::string dir = [] {
         if (const char* d = std::getenv("RTCSIM_FUZZ_SCRATCH"); d && *d) return std::string(d);
         if (access("/dev/shm", W_OK) == 0) return std::string("/dev/shm");
         const char* tmp = std::getenv("TMPDIR");
         return std::string(tmp && *tmp ? tmp : "/tmp");
     }();
-    const std::string path = dir + "/rtcsim_fuzz_" + std::to_string(getpid()) + suffix;
+    return dir;
+}
+
+// A scratch file, unique per process and suffix, rewritten for every input.
+inline std::string write_scratch(const std::uint8_t* data, std::size_t size, const char* suffix) {
+    const std::string path = scratch_dir() + "/rtcsim_fuzz_" + std::to_string(getpid()) + suffix;
     static std::string remove_at_exit;  // one suffix per harness
     if (remove_at_exit.empty()) {
         remove_at_exit = path;

@@ -86,14 +86,14 @@ TEST_CASE("pbrt import errors: syntax, parameters and structure") {
     expect(pbrt_error("ObjectBegin \"a\"\nObjectBegin \"b\"\n"), "bad.pbrt: line 2", "inside ObjectBegin");
     expect(pbrt_error("Rotate 30 0 0 0\n"), "bad.pbrt: line 1", "zero axis");
     expect(pbrt_error("Shape \"curve\" \"point3 P\" [ 0 0 0 1 0 0 2 0 0 3 0 0 ] \"float width\" -1"),
-           "bad.pbrt: line 1", "a width must lie in [0, 1e18]");
+           "bad.pbrt: line 1", "a width must lie in [0, 1e12]");
     expect(pbrt_error("Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ] \"bool x\" maybe"),
            "bad.pbrt: line 1", "expected true or false");
     expect(pbrt_error("Shape \"trianglemesh\" \"point3 P\" [ 0 0 0 1 0 0 0 1 0 ]\n\"string s\" [ \"a\" \n"),
            "bad.pbrt: line 3", "unexpected end of file");
     expect(pbrt_error("Shape \"x\\q\"\n"), "bad.pbrt: line 1", "unknown escape");
     expect(pbrt_error("Scale 1e30 1 1\nShape \"trianglemesh\" \"point3 P\" [ 1e-10 0 0 1e10 0 0 0 1 0 ]"),
-           "bad.pbrt: line 2", "beyond +-1e18");
+           "bad.pbrt: line 2", "beyond +-1e12");
     expect(pbrt_error("\n\nInclude \"" + kImportFixtures.string() + "\"\n"), "bad.pbrt: line 3", "is a directory");
     // Including itself (the depth guard is the same path with a longer chain).
     expect(pbrt_error("\nInclude \"bad.pbrt\"\n"), "bad.pbrt: line 2", "include cycle");

@@ -7,6 +7,7 @@
 #include "scenes/loaders/pbrt/params.h"
 #include "scenes/loaders/pbrt/shapes.h"
 #include "scenes/generators/strand_builder.h"
+#include "scenes/limits.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
@@ -170,14 +171,14 @@ private:
         auto map = [&](const Vec3& p) {
             const glm::dvec4 q = m * glm::dvec4(glm::dvec3(p), 1.0);
             for (int i = 0; i < 3; ++i)
-                if (!(std::abs(q[i]) <= kMaxCoordinate)) t.fail(line, "a transformed point lies beyond +-1e18");
+                if (!(std::abs(q[i]) <= kMaxCoordinate)) t.fail(line, std::string("a transformed point lies beyond +-") + kMaxCoordinateText);
             return Vec3(glm::dvec3(q));
         };
         const auto base = static_cast<std::uint32_t>(into.curves.points.size());
         for (std::size_t i = 0; i < g.curves.points.size(); ++i) {
             into.curves.points.push_back(map(g.curves.points[i]));
             const double r = g.curves.radii[i] * width_scale;
-            if (!(r <= kMaxCoordinate)) t.fail(line, "a transformed width exceeds 1e18");
+            if (!(r <= kMaxCoordinate)) t.fail(line, std::string("a transformed width exceeds ") + kMaxCoordinateText);
             into.curves.radii.push_back(static_cast<float>(r));
         }
         for (std::size_t i = 1; i < g.curves.offsets.size(); ++i) into.curves.offsets.push_back(base + g.curves.offsets[i]);

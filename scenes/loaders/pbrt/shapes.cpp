@@ -1,6 +1,8 @@
 // pbrt-v4 curve and mesh shapes (see shapes.h for the mapping).
 #include "scenes/loaders/pbrt/shapes.h"
 
+#include "scenes/limits.h"
+
 #include <array>
 #include <cmath>
 
@@ -39,7 +41,7 @@ std::array<Vec3, 4> segment(const std::vector<double>& P, bool bspline, int degr
 
 void check_finite(const ParamList& params, const Param& p) {
     for (const double x : p.numbers)
-        if (std::abs(x) > 1e18) params.fail(p, "value beyond +-1e18");
+        if (std::abs(x) > kMaxCoordinate) params.fail(p, std::string("value beyond +-") + kMaxCoordinateText);
 }
 
 std::vector<std::array<std::uint32_t, 3>> triangles_of(const ParamList& params, const Param& P,
@@ -116,8 +118,8 @@ void add_curve(const ParamList& params, Strands& out) {
     const double width = params.number("width", "float", 1.0);
     const double w0 = params.number("width0", "float", width), w1 = params.number("width1", "float", width);
     for (const char* key : {"width", "width0", "width1"})
-        if (const Param* w = params.find(key, "float"); w && !(w->numbers[0] >= 0.0 && w->numbers[0] <= 1e18))
-            params.fail(*w, "a width must lie in [0, 1e18]");
+        if (const Param* w = params.find(key, "float"); w && !(w->numbers[0] >= 0.0 && w->numbers[0] <= kMaxCoordinate))
+            params.fail(*w, std::string("a width must lie in [0, ") + kMaxCoordinateText + "]");
     const Param* N = params.find("N", "normal");
     if (type == "ribbon" && !N) params.fail("a \"ribbon\" curve needs normals \"normal N\"");
     // pbrt-v4 discards N on other types (with a warning) and checks it on ribbons only.

@@ -1,0 +1,69 @@
+// libFuzzer harness: what `simulate merge` reads (sim/app/shard_runs.cpp).
+// Input starting with '{' is a shard.json: read from a scratch directory,
+// checked as a one-shard set, and its config_text planned with its --set
+// overrides (small ceilings) against its points and config_hash, as the
+// merge does before reading frames. Anything else is a frame file after one
+// line naming the identity the merge expects (so the fuzzer can get past the
+// identity check; the seeds carry the identity their file records), read and
+// merged as a one-band frame.
+#include "fuzz_common.h"
+#include "sim/app/run_all.h"
+#include "sim/shard/frame_file.h"
+#include "sim/shard/manifest.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace {
+
+void merge_manifest(const std::uint8_t* data, std::size_t size) {
+    // read_manifest takes a directory: the scratch file is its shard.json
+    // (the directory is made once and removed at exit).
+    static const std::string dir = [] {
+        const std::string d = rtc::fuzz::scratch_dir() + "/rtcsim_fuzz_" + std::to_string(getpid()) + "_merge";
+        std::filesystem::create_directories(d);
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(rtc::fuzz::scratch_dir() + "/rtcsim_fuzz_" + std::to_string(getpid()) + "_merge", ec);
+        });
+        return d;
+    }();
+    std::FILE* f = std::fopen((dir + "/shard.json").c_str(), "wb");
+    if (!f) std::abort();
+    if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
+    std::fclose(f);
+    std::vector<rtc::ShardManifest> set = rtc::check_shard_set({rtc::read_manifest(dir)});
+    const rtc::ShardManifest& m = set.front();
+    rtc::WorkLimits limits;
+    limits.max_rays = 1e6;
+    limits.max_memory = 16.0 * 1024 * 1024;
+    limits.max_sweep_points = 16;
+    const rtc::RunPlan plan = rtc::plan_config_text(m.config_file, m.config_text, m.sets, limits);
+    (void)(plan.points.size() == m.points && m.config_hash == rtc::config_hash(plan.config.dump()));
+}
+
+void merge_frame(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const std::size_t eol = text.find('\n');
+    if (eol == std::string::npos) return;
+    const std::string identity = text.substr(0, eol);
+    const std::string path = rtc::fuzz::write_scratch(data + eol + 1, size - eol - 1, ".frame");
+    const rtc::FrameResult f = rtc::merge_frame_bands(
+        1, [&](std::size_t) { return rtc::read_frame_file(path, identity); }, "fuzz merge");
+    (void)f;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    try {
+        if (size > 0 && data[0] == '{')
+            merge_manifest(data, size);
+        else
+            merge_frame(data, size);
+    } catch (const rtc::InputError&) {
+    }
+    return 0;
+}
