@@ -121,3 +121,68 @@ def test_plot_command(sweep_dir, tmp_path):
     assert sorted(os.listdir(tmp_path / "many")) == [
         "speedup_table.svg", "speedup_vs_area_ratio.svg", "speedup_vs_scene.count.svg",
         "speedup_vs_scene.tilt_deg.svg"]
+
+
+PAIRED = {"workload.width": 16, "workload.height": 16, "output.images": False,
+          "sweep": {"scene": [{"count": 10, "radius": 0.01}, {"count": 40, "radius": 0.005},
+                              {"count": 20, "radius": 0.02}],
+                    "scene.tilt_deg": [0, 30]}}
+
+
+def test_a_paired_axis_is_one_axis_as_in_the_cli(simulate, tmp_path):
+    out = tmp_path / "paired"
+    sets = [a for k, v in PAIRED.items() for a in ("--set", f"{k}={__import__('json').dumps(v)}")]
+    cli = simulate(TINY, "--quiet", "--out", out, *sets)
+    assert cli.returncode == 0, cli.stderr
+    runs = rtcsim.load_reports(out)
+    # {count, radius} is one axis placed at count, as the CLI's speedup_vs_scene.svg.
+    assert plot.numeric_axes(runs) == ["scene", "scene.tilt_deg"]
+    cli_plots = sorted(p.name for p in out.glob("speedup_vs_*.svg")
+                       if p.name not in ("speedup_vs_area_ratio.svg", "speedup_vs_memory.svg"))  # not sweep axes
+    assert cli_plots == sorted(f"speedup_vs_{a}.svg" for a in plot.numeric_axes(runs))
+    for axis in ("scene", "scene.count", "scene.radius"):  # by the axis or by either member
+        fig = plot.speedup_vs_axis(runs, axis)
+        lines = [line for line in fig.axes[0].get_lines() if line.get_marker() == "o"]
+        assert sorted(line.get_label() for line in lines) == ["scene.tilt_deg=0", "scene.tilt_deg=30"]
+        for line in lines:  # three points each, the reports' speedups
+            tilt = int(line.get_label().split("=")[1])
+            want = sorted((r.sweep_point["scene.count"], r.speedup()) for r in runs
+                          if r.sweep_point["scene.tilt_deg"] == tilt)
+            assert list(line.get_xdata()) == [w[0] for w in want]
+            assert np.allclose(line.get_ydata(), [w[1] for w in want])
+        assert fig.axes[0].get_xlabel() == "count, radius"
+        assert sorted(t.get_text() for t in fig.axes[0].get_xticklabels()) == ["10, 0.01", "20, 0.02", "40, 0.005"]
+
+
+def table_cycles_per_ray(result):
+    """{method: cycles per ray} of the CLI's summary table (its primary preset)."""
+    import csv
+    import io
+    row = next(csv.DictReader(io.StringIO(rtcsim.summary_table(result, "csv"))))
+    return {m: float(row[f"{m} cyc/ray"]) for m in result.method_names}
+
+
+def test_cycles_by_event_figure_is_the_table(tmp_path):
+    # Under the warp preset the per-event prices of the per-ray model are not
+    # the run's cycles (they were drawn as ~8x the table's): the bars stack
+    # the warp model's units and end at the table's cycles per ray.
+    for presets in (["turing-calibrated", "turing-per-ray-guess"], ["turing-per-ray-guess", "turing-calibrated"]):
+        result = rtcsim.run(TINY, threads=2, progress=False,
+                            sets={"output.images": False, "workload.width": 24, "workload.height": 24,
+                                  "cost": presets})
+        fig = plot.cycle_breakdown(result)  # the primary preset, as the table
+        tops = {}
+        for bar in fig.axes[0].patches:
+            x = round(bar.get_x() + bar.get_width() / 2)
+            tops[x] = max(tops.get(x, 0.0), bar.get_y() + bar.get_height())
+        methods = [t.get_text() for t in fig.axes[0].get_xticklabels()]
+        assert methods == ["ref", "obb"]
+        table = table_cycles_per_ray(result)
+        for i, m in enumerate(methods):
+            assert tops[i] == pytest.approx(table[m], rel=1e-3), (presets[0], m)  # the table's 4 digits
+            for p in presets:  # and every preset's, as report.json has it
+                other = plot.cycle_breakdown(result, p)
+                top = sum(b.get_height() for b in other.axes[0].patches if round(b.get_x() + b.get_width() / 2) == i)
+                assert top == pytest.approx(result.cycles_per_ray(m, p)), (p, m)
+        if presets[0] == "turing-calibrated":
+            saved(fig, tmp_path / "warp.png")
