@@ -170,6 +170,9 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
+    r.scene_notes = scene.notes;
+    for (const std::string& note : scene.notes)  // warnings, printed under --quiet too
+        std::fprintf(stderr, "warning: %s (report.json: scene.notes)\n", note.c_str());
     if (r.scene.thin_segments > 0)  // a warning, printed under --quiet too
         std::fprintf(stderr,
                      "warning: %s: %zu of %zu segments are thinner than %g float ulps of their position "
