@@ -4,14 +4,14 @@
 // ignored Ctrl-C. Here the work runs on its own thread while the calling
 // thread waits with the GIL released and, every 50 ms, takes the GIL and
 // asks the interpreter for pending signals (PyErr_CheckSignals). When a
-// handler raised, the run is asked to stop (sim/util/interrupt.h: it polls
+// handler raised, the run is asked to stop (sim/execution/interrupt.h: it polls
 // between image rows, methods and sweep points), joined, and the handler's
 // exception (KeyboardInterrupt) propagates. What the work wrote is what an
 // interrupted CLI run leaves: report.json is written last, never by an
 // interrupted run.
 #pragma once
 
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 
 #include <pybind11/pybind11.h>
 

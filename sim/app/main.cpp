@@ -1,7 +1,7 @@
 // `simulate`: the command-line front end; everything lives in the sim
 // libraries (sim/app/simulate_main.cpp sequences it).
 #include "sim/app/simulate_main.h"
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/process_memory.h"
 
 #include <signal.h>

@@ -4,7 +4,7 @@
 #include "sim/app/output_dir.h"
 #include "sim/app/provenance.h"
 #include "sim/calibrate/calibrate_report.h"
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
@@ -189,7 +189,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
     std::optional<RunResult> traced;
     std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
     for (std::size_t i = 0; i < points.size(); ++i) {
-        throw_if_interrupted();  // Ctrl-C between sweep points (sim/util/interrupt.h)
+        throw_if_interrupted();  // Ctrl-C between sweep points (sim/execution/interrupt.h)
         const std::string dir = points.size() == 1
                                     ? out
                                     : (std::filesystem::path(out) /

@@ -4,7 +4,7 @@
 #include "sim/app/run_all.h"
 #include "sim/app/shard_runs.h"
 #include "core/input_error.h"
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/json_file.h"
 #include "sim/util/version.h"
 

@@ -9,7 +9,7 @@
 #include "core/uninitialized.h"
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/progress.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"

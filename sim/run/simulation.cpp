@@ -1,6 +1,6 @@
 #include "sim/run/simulation.h"
 
-#include "sim/util/interrupt.h"
+#include "sim/execution/interrupt.h"
 #include "sim/workload/ray_file.h"
 
 #include <algorithm>
@@ -166,7 +166,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(c.scene);
     r.load_seconds = seconds_since(t_load);
-    throw_if_interrupted();  // Ctrl-C: between phases (sim/util/interrupt.h)
+    throw_if_interrupted();  // Ctrl-C: between phases (sim/execution/interrupt.h)
     check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);

@@ -9,6 +9,7 @@
 // nothing finished-looking is left behind.
 #pragma once
 
+#include <atomic>
 #include <stdexcept>
 
 namespace rtc {
@@ -19,13 +20,22 @@ public:
     Interrupted() : std::runtime_error("interrupted") {}
 };
 
+// The request: lock-free, so a signal handler may store to it. One per
+// program (an inline variable), shared by its libraries.
+inline std::atomic<bool> g_interrupt_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
 // Asks every running run to stop at its next check. Async-signal-safe.
-void request_interrupt() noexcept;
+inline void request_interrupt() noexcept { g_interrupt_requested.store(true, std::memory_order_relaxed); }
 // Forgets a request (after the interrupted run has unwound).
-void clear_interrupt() noexcept;
-[[nodiscard]] bool interrupt_requested() noexcept;
+inline void clear_interrupt() noexcept { g_interrupt_requested.store(false, std::memory_order_relaxed); }
+[[nodiscard]] inline bool interrupt_requested() noexcept {
+    return g_interrupt_requested.load(std::memory_order_relaxed);
+}
 // Throws Interrupted when a stop was requested. Cheap: one relaxed load.
-void throw_if_interrupted();
+inline void throw_if_interrupted() {
+    if (interrupt_requested()) throw Interrupted();
+}
 
 // The exit status of a program stopped by Ctrl-C (128 + SIGINT, as a shell
 // reports a process killed by it).
