@@ -35,6 +35,9 @@ struct Scene {
     std::string name;
     Strands strands;
     TriangleMesh mesh;
+    // What the files held and the scene drops, one line each (e.g. a pbrt
+    // file's spheres and camera): warnings, and report.json's scene.notes.
+    std::vector<std::string> notes;
 };
 
 }  // namespace rtc

@@ -222,6 +222,59 @@ def pareto_svg(rs, path):
     out.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#888" stroke-dasharray="4 3"/>' % (L, Y(1), W - R, Y(1)))
     out.append('<text x="%d" y="%d" text-anchor="middle">total memory over ref (%%), OptiX 7 preset</text>' % ((L + W - R) // 2, H - 18))
     out.append('<text transform="translate(18 %d) rotate(-90)" text-anchor="middle">speedup over ref (turing-calibrated)</text>' % ((T + H - B) // 2))
+    # Labels: one per drawn position, not per point. Sizes whose points
+    # coincide (a strand cluster cannot outgrow its strand; size 1 is the
+    # same masquerade under both strategies) share one label ("4-256"), and
+    # each label goes where it overlaps no other label and no point (the
+    # first free spot on rings around its point, with a leader line when
+    # away from it), so none of them is drawn over another.
+    FONT, CHAR = 9, 5.2  # font size and a digit's width at that size (px)
+    groups = {}  # drawn position -> [colour, sizes]
+    for n, ((scene, strategy), pts) in enumerate(sorted(series.items())):
+        for x, y, k in pts:
+            g = groups.setdefault((round(X(x)), round(Y(y))), [colours[n % len(colours)], []])
+            if k not in g[1]:
+                g[1].append(k)
+
+    def label_text(sizes):
+        sizes = sorted(sizes)
+        runs, start = [], 0
+        for i in range(1, len(sizes) + 1):  # consecutive cluster sizes (powers of two) as a range
+            if i == len(sizes) or sizes[i] != 2 * sizes[i - 1]:
+                runs.append(str(sizes[start]) if i - start == 1 else "%d-%d" % (sizes[start], sizes[i - 1]))
+                start = i
+        return ",".join(runs)
+
+    def overlaps(a, b):
+        return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+    dots = [(X(x), Y(y)) for pts in series.values() for x, y, _ in pts]
+    taken = [(px - 3.5, py - 3.5, px + 3.5, py + 3.5) for px, py in dots]  # the dots (r = 3), and a margin
+    labels = []
+    for (px, py), (c, sizes) in sorted(groups.items()):
+        text = label_text(sizes)
+        w = CHAR * len(text)
+        spot = None
+        for ring in range(1, 16):
+            d = 4 + 7 * (ring - 1)
+            for dx, dy in ((1, -1), (1, 1), (-1, -1), (-1, 1), (1, 0), (-1, 0), (0, -1), (0, 1)):
+                x0 = px + dx * d if dx >= 0 else px - d - w
+                if dx == 0:
+                    x0 = px - w / 2
+                base = py + dy * d + (FONT if dy > 0 else 0) + (FONT / 2 if dy == 0 else 0)
+                box = (x0, base - FONT, x0 + w, base)
+                if box[0] < L or box[2] > W - R or box[1] < T or box[3] > H - B:
+                    continue
+                if not any(overlaps(box, t) for t in taken):
+                    spot = (box, base, ring)
+                    break
+            if spot:
+                break
+        if not spot:
+            continue  # no free spot: the point stays unlabelled rather than covered
+        box, base, ring = spot
+        taken.append(box)
+        labels.append((px, py, box, base, ring, c, text))
     for n, ((scene, strategy), pts) in enumerate(sorted(series.items())):
         c = colours[n % len(colours)]
         dash = '' if strategy == "orientation" else ' stroke-dasharray="5 3"'
@@ -229,10 +282,16 @@ def pareto_svg(rs, path):
             c, dash, " ".join("%.1f,%.1f" % (X(x), Y(y)) for x, y, _ in pts)))
         for x, y, k in pts:
             out.append('<circle cx="%.1f" cy="%.1f" r="3" fill="%s"/>' % (X(x), Y(y), c))
-            out.append('<text x="%.1f" y="%.1f" font-size="9" fill="%s">%d</text>' % (X(x) + 4, Y(y) - 4, c, k))
         ly = T + 10 + 18 * n
         out.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="2"%s/>' % (W - R + 12, ly, W - R + 36, ly, c, dash))
         out.append('<text x="%d" y="%d">%s, %s</text>' % (W - R + 42, ly + 4, scene, strategy))
+    for px, py, box, base, ring, c, text in labels:
+        if ring > 1:  # away from its point: a leader line to the label's nearest corner
+            lx = min(max(px, box[0]), box[2])
+            ly = min(max(py, box[1]), box[3])
+            out.append('<line x1="%d" y1="%d" x2="%.1f" y2="%.1f" stroke="%s" stroke-width="0.6"/>' % (px, py, lx, ly, c))
+        out.append('<text x="%.1f" y="%.1f" font-size="%d" fill="%s" data-point="%d %d">%s</text>' % (
+            box[0], base, FONT, c, px, py, text))
     out.append('</svg>')
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")

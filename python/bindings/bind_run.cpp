@@ -2,6 +2,7 @@
 // plans it (overrides, sweep, strict parsing), each point traced with the GIL
 // released, and the result kept in C++ for NumPy views.
 #include "common.h"
+#include "interruptible.h"
 
 #include "sim/app/output_dir.h"
 #include "sim/app/run_all.h"
@@ -68,12 +69,13 @@ RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, b
     ctx.keep_rays = keep_rays;
     ctx.out_dir = out_dir;
     auto run = std::make_shared<RunResult>();
-    {
-        py::gil_scoped_release release;  // tracing runs on `threads` cores without Python
+    // Tracing runs on `threads` cores without Python, and Ctrl-C stops it.
+    run_interruptible([&] {
         if (!out_dir.empty()) make_dir(out_dir);
         *run = run_point(*h.plan, i, ctx);
+        throw_if_interrupted();  // nothing written after a late Ctrl-C
         if (!out_dir.empty()) write_outputs(*run, out_dir);
-    }
+    });
     return {run};
 }
 
@@ -120,8 +122,8 @@ void bind_run(py::module_& m) {
         .def("label", [](const PlanHandle& h, std::size_t i) { return h.plan->points.at(i).label; })
         .def("run", &run_plan_point, py::arg("index"), py::arg("threads") = 0, py::arg("progress") = true,
              py::arg("record_warps") = false, py::arg("keep_rays") = false, py::arg("out_dir") = "",
-             "Traces point `index` (GIL released) under the plan's limits. With out_dir, writes what the CLI "
-             "writes there.");
+             "Traces point `index` (GIL released; Ctrl-C raises KeyboardInterrupt and writes nothing more) "
+             "under the plan's limits. With out_dir, writes what the CLI writes there.");
 
     py::class_<RunHandle>(m, "Run", "One traced run (a RunResult).")
         .def("report_json", [](const RunHandle& h, int indent) { return report_json(*h.run).dump(indent); },

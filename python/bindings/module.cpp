@@ -2,6 +2,7 @@
 // scenes and calibration, bound with pybind11. The Python package around it
 // (python/rtcsim) gives the documented API; this layer stays close to the C++.
 #include "common.h"
+#include "interruptible.h"
 
 #include "core/events.h"
 #include "sim/app/simulate_main.h"
@@ -67,12 +68,20 @@ PYBIND11_MODULE(_rtcsim, m) {
         return out;
     }, "The registered methods (sim/methods/registry.cpp).");
 
+    // A stop requested by another thread's Ctrl-C (interrupt.h) reaches a run
+    // as Interrupted: Python's name for it.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Interrupted&) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+        }
+    });
     m.def("simulate_main", [](const std::vector<std::string>& args) {
-        py::gil_scoped_release release;
-        return simulate_main(args);
+        return run_interruptible([&] { return simulate_main(args); });
     }, py::arg("args"),
           "Runs `simulate ARGS...` exactly as the program does; returns its exit code "
-          "(0 done, 2 bad input, 3 other).");
+          "(0 done, 2 bad input, 3 other). Ctrl-C raises KeyboardInterrupt.");
 
     bind_cost(m);
     bind_run(m);

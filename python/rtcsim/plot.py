@@ -19,6 +19,7 @@ import numpy as np
 from matplotlib import colors, ticker
 from matplotlib.figure import Figure
 
+from .axes import axis_index, sweep_axes
 from .report import Report, load_report, load_reports
 
 
@@ -82,36 +83,48 @@ def speedup_table(runs, preset=None, title=None):
 
 def speedup_vs_axis(runs, axis, preset=None, method=None, title=None, log_x=None):
     """Speedup of `method` (default: every non-baseline method) against a
-    numeric sweep axis, one line per combination of the other sweep values."""
-    runs = [r for r in _reports(runs) if axis in r.sweep_point]
-    if not runs:
+    sweep axis (a key, or a paired axis by its key or any member's: see
+    sweep_axes), one line per combination of the other axes' values: the
+    series of the CLI's speedup_vs_<axis>.svg."""
+    runs = _reports(runs)
+    axes = sweep_axes(runs)
+    found = next((a for a in axes if axis == a["key"] or axis in a["keys"]), None)
+    if found is None:
         raise ValueError(f"no run has the sweep axis {axis!r}")
+    others = [a for a in axes if a is not found]
     methods = [method] if method else list(dict.fromkeys(m for r in runs for m in r.others))
     series = {}
     for m in methods:
         for r in runs:
-            rest = ", ".join(f"{k}={v}" for k, v in r.sweep_point.items() if k != axis)
+            rest = ", ".join(a["legend"][axis_index(a, r)] for a in others)
             key = rest if len(methods) == 1 else (f"{m}, {rest}" if rest else m)
             s = r.speedup(m, preset)
             low, high = (r.speedup_interval(m, preset) if s else None) or (math.nan, math.nan)
-            series.setdefault(key or m, []).append((r.sweep_point[axis], s if s else math.nan, low, high))
+            x = found["x"][axis_index(found, r)]
+            pts = series.setdefault(key or m, [])
+            if all(p[0] != x for p in pts):  # a point already there for its series is not repeated
+                pts.append((x, s if s else math.nan, low, high))
     fig = Figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.add_subplot()
     for key, pts in series.items():
         pts.sort()
-        line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=key)
+        line, = ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=key,
+                        linestyle="-" if found["numeric"] else "none")  # categories are not joined
         if any(not math.isnan(p[2]) for p in pts):  # the 90 % interval of the draws, as a band
             ax.fill_between([p[0] for p in pts], [p[2] for p in pts], [p[3] for p in pts],
                             color=line.get_color(), alpha=0.18, linewidth=0)
-    xs = [p[0] for pts in series.values() for p in pts]
-    if log_x or (log_x is None and min(xs) > 0 and max(xs) / min(xs) >= 100):
+    xs = found["x"]
+    if log_x or (log_x is None and found["numeric"] and min(xs) > 0 and max(xs) / min(xs) >= 100):
         ax.set_xscale("log")
+    if len(found["keys"]) > 1 or not found["numeric"]:  # ticks name each value, as the CLI's
+        ax.set_xticks(xs, found["tick"])
+        ax.xaxis.set_minor_locator(ticker.NullLocator())
     ax.axhline(1.0, color="#888888", lw=0.8, ls="--")
     base = runs[0].baseline
     who = methods[0] if len(methods) == 1 else "each method"
-    ax.set_xlabel(axis)
+    ax.set_xlabel(found["name"])
     ax.set_ylabel(f"speedup ({base} cycles / {who} cycles)")
-    ax.set_title(title or f"speedup of {who} over {base} vs {axis} ({runs[0]._preset(preset)})")
+    ax.set_title(title or f"speedup of {who} over {base} vs {found['name']} ({runs[0]._preset(preset)})")
     ax.grid(True, alpha=0.3)
     if len(series) > 1 or next(iter(series)) != methods[0]:
         ax.legend(fontsize=8)
@@ -119,13 +132,9 @@ def speedup_vs_axis(runs, axis, preset=None, method=None, title=None, log_x=None
 
 
 def numeric_axes(runs):
-    """Sweep axes with numeric values and more than one value among the runs."""
-    values = {}
-    for r in _reports(runs):
-        for k, v in r.sweep_point.items():
-            if isinstance(v, (int, float)) and not isinstance(v, bool):
-                values.setdefault(k, set()).add(v)
-    return [k for k, v in values.items() if len(v) > 1]
+    """The sweep axes placed on a number (sweep_axes), by key: a single key
+    ("scene.tilt_deg") or a paired axis's common prefix ("scene")."""
+    return [a["key"] for a in sweep_axes(_reports(runs)) if a["numeric"]]
 
 
 def _plain_log_ticks(ax, xs, ys):
@@ -189,19 +198,25 @@ def speedup_vs_area_ratio(groups, preset=None, method=None, labels=True, fit=Tru
 
 
 def cycle_breakdown(run, preset=None, title=None):
-    """Cycles per ray of each method, stacked by event (per-ray model)."""
+    """Cycles per ray of each method under a preset, stacked: by event under
+    a per-ray preset, by unit (shader, RT unit, hand-off, programs) under a
+    warp preset, whose cycles are the warps' and not the sum of per-event
+    prices. Either way each bar is the table's cycles per ray."""
     r = _reports(run)[0]
-    methods = [m for m in r.method_names if r.runnable(m)]
-    events = list(dict.fromkeys(e for m in methods for e in r.cycle_breakdown(m, preset)))
+    methods = [m for m in r.method_names if r.runnable(m) and r.cycles(m, preset) is not None]
+    warp = any(r.warp_breakdown(m, preset) is not None for m in methods)
+    parts = {m: (r.warp_breakdown(m, preset) if warp else r.cycle_breakdown(m, preset)) or {} for m in methods}
+    names = list(dict.fromkeys(e for m in methods for e in parts[m]))
     fig = Figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.add_subplot()
     bottom = np.zeros(len(methods))
-    for e in events:
-        v = np.array([r.cycle_breakdown(m, preset).get(e, 0.0) / max(r.rays(m), 1) for m in methods])
+    for e in names:
+        v = np.array([parts[m].get(e, 0.0) / max(r.rays(m), 1) for m in methods])
         ax.bar(methods, v, bottom=bottom, label=e)
         bottom += v
     ax.set_ylabel("cycles per ray")
-    ax.set_title(title or f"{r.label}: cycles per ray by event ({r._preset(preset)})")
+    what = "by unit, warp model" if warp else "by event"
+    ax.set_title(title or f"{r.label}: cycles per ray {what} ({r._preset(preset)})")
     ax.legend(fontsize=7, ncol=2)
     return fig
 

@@ -117,10 +117,21 @@ class Report:
         return entry.get("per_ray") if entry else None
 
     def cycle_breakdown(self, method, preset=None):
-        """{event: cycles} of the per-ray model (events that cost anything)."""
+        """{event: cycles} of the per-ray model (events that cost anything).
+        Under a warp preset these are the per-ray model's figures of the same
+        costs, not cycles(): warp_breakdown has the warp model's, by unit."""
         m = self._method(method)
         entry = m.get("cycles", {}).get(self._preset(preset)) if m.get("runnable") else None
         return dict(entry.get("breakdown", {})) if entry else {}
+
+    def warp_breakdown(self, method, preset=None):
+        """{unit: cycles} of the warp model (shader, rt_unit, hand_off,
+        programs), which add up to cycles(method, preset); None under a
+        per-ray preset (cycle_breakdown is then the run's own)."""
+        m = self._method(method)
+        entry = m.get("cycles", {}).get(self._preset(preset)) if m.get("runnable") else None
+        warp = (entry or {}).get("warp")
+        return dict(warp["breakdown"]) if warp else None
 
     def memory_total(self, method):
         m = self._method(method)

@@ -41,13 +41,13 @@ LoadedCurves load_curves(const std::filesystem::path& file, CurveFormat format) 
             ObjContents obj = load_obj(file);
             if (obj.lines.strand_count() == 0)
                 throw InputError(file.string() + ": no `l` polylines in this OBJ file");
-            return {std::move(obj.lines), false};
+            return {std::move(obj.lines), false, {}};
         }
         case CurveFormat::Pbrt: {
             PbrtScene pbrt = load_pbrt(file);
             if (pbrt.curves.strand_count() == 0)
                 throw InputError(file.string() + ": no `Shape \"curve\"` in this pbrt file");
-            return {std::move(pbrt.curves), true};
+            return {std::move(pbrt.curves), true, std::move(pbrt.notes)};
         }
         case CurveFormat::Auto: break;
     }

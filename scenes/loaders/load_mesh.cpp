@@ -166,7 +166,7 @@ std::optional<MeshFormat> mesh_format_from_name(std::string_view name) {
     return std::nullopt;
 }
 
-TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format) {
+TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format, std::vector<std::string>* notes) {
     if (format == MeshFormat::Auto) {
         const std::string ext = lower_extension(file);
         const auto f = ext.empty() ? std::nullopt : mesh_format_from_name(ext.substr(1));
@@ -179,7 +179,11 @@ TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format) {
         case MeshFormat::Obj: return load_obj(file).mesh;
         case MeshFormat::Gltf:
         case MeshFormat::Ply: return load_assimp_mesh(file);
-        case MeshFormat::Pbrt: return load_pbrt(file).mesh;
+        case MeshFormat::Pbrt: {
+            PbrtScene pbrt = load_pbrt(file);
+            if (notes) notes->insert(notes->end(), pbrt.notes.begin(), pbrt.notes.end());
+            return std::move(pbrt.mesh);
+        }
         case MeshFormat::Auto: break;
     }
     throw InputError(file.string() + ": unknown mesh format");

@@ -6,12 +6,14 @@
 
 #include "scenes/scene.h"
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rtc {
 
@@ -21,6 +23,7 @@ namespace rtc {
 struct LoadedCurves {
     Strands strands;
     bool has_radius = false;
+    std::vector<std::string> notes;  // what the file held and the scene drops (pbrt: PbrtScene::notes)
 };
 
 // Cem Yuksel HAIR: radius = thickness / 2 (per point, or the header default).
@@ -51,7 +54,10 @@ struct ObjContents {
 // transform applied and object instances flattened. `Include` and `Import`
 // resolve against the including file's folder, then the main file's (as
 // pbrt-v4 does). Other directives are checked and skipped; so are sphere,
-// disk and cylinder shapes, counted in `skipped_shapes`. Errors name the
+// disk and cylinder shapes, counted in `skipped_shapes`. What a run then
+// does without (those shapes, the Camera, the Film's resolution: the
+// config's workload sets camera and image) is said in `notes`, which a run
+// prints as warnings and keeps in report.json (scene.notes). Errors name the
 // file, line and token. The limits bound what a small file can make.
 struct PbrtLimits {
     std::uint64_t max_elements = std::uint64_t{1} << 28;  // points + vertices + triangles, after instancing
@@ -65,6 +71,9 @@ struct PbrtScene {
     std::size_t mesh_shapes = 0;
     std::size_t files = 0;         // the main file plus every Include/Import
     std::map<std::string, std::size_t> skipped_shapes;
+    std::string camera;                               // the Camera directive's type ("" without one)
+    std::array<double, 2> film_resolution{0.0, 0.0};  // Film's x/yresolution (0: no Film)
+    std::vector<std::string> notes;                   // "<file>: ..." per thing dropped, as above
 };
 [[nodiscard]] PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits = {});
 
@@ -79,8 +88,10 @@ struct PbrtScene {
 enum class MeshFormat : std::uint8_t { Auto, Obj, Gltf, Ply, Pbrt };
 [[nodiscard]] std::optional<MeshFormat> mesh_format_from_name(std::string_view name);
 // Auto picks by extension (.obj .gltf .glb .ply .pbrt); the mesh part only
-// (an OBJ's faces, a pbrt file's meshes).
-[[nodiscard]] TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format = MeshFormat::Auto);
+// (an OBJ's faces, a pbrt file's meshes). With `notes`, appends what the
+// file held and the mesh drops (pbrt: PbrtScene::notes).
+[[nodiscard]] TriangleMesh load_mesh(const std::filesystem::path& file, MeshFormat format = MeshFormat::Auto,
+                                     std::vector<std::string>* notes = nullptr);
 
 enum class CurveFormat : std::uint8_t { Auto, Hair, Tfx, Trk, Swc, Obj, Txt, Pbrt };
 [[nodiscard]] std::optional<CurveFormat> curve_format_from_name(std::string_view name);

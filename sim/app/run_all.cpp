@@ -4,6 +4,7 @@
 #include "sim/app/output_dir.h"
 #include "sim/app/provenance.h"
 #include "sim/calibrate/calibrate_report.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
@@ -188,6 +189,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
     std::optional<RunResult> traced;
     std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
     for (std::size_t i = 0; i < points.size(); ++i) {
+        throw_if_interrupted();  // Ctrl-C between sweep points (sim/execution/interrupt.h)
         const std::string dir = points.size() == 1
                                     ? out
                                     : (std::filesystem::path(out) /
@@ -205,6 +207,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         ctx.out_dir = dir;
         if (frames) ctx.frame_source = [frames, i](const std::string& method) { return (*frames)(i, method); };
         RunResult r = repriced ? std::move(*repriced) : run_point(plan, i, ctx);
+        throw_if_interrupted();  // not written: an interrupted run leaves no report.json
         {
             // The arrays (140 MB on the head frame, mostly the kernel's copy
             // into the page cache) are written while the pictures are

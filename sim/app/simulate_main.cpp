@@ -4,6 +4,7 @@
 #include "sim/app/run_all.h"
 #include "sim/app/shard_runs.h"
 #include "core/input_error.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/json_file.h"
 #include "sim/util/version.h"
 
@@ -32,6 +33,11 @@ int simulate_main(const std::vector<std::string>& args) {
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;
+    } catch (const Interrupted&) {
+        // Unwound: temporaries removed, the output directory's mark still
+        // says running, so merge and the readers refuse it.
+        std::fprintf(stderr, "simulate: interrupted; the output directory is left marked unfinished\n");
+        return kInterruptedExitCode;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "simulate: error: %s\n", e.what());
         return 3;

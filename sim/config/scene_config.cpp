@@ -5,6 +5,7 @@
 
 #include "sim/util/paths.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -144,8 +145,9 @@ void parse_file(const JsonReader& j, SceneDesc& s) {
     }
 }
 
-Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c) {
+Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c, std::vector<std::string>& notes) {
     LoadedCurves loaded = load_curves(c.path.path, c.format);
+    notes.insert(notes.end(), loaded.notes.begin(), loaded.notes.end());
     if (loaded.strands.strand_count() == 0) fail_at(s, c.path.key, "no strands in " + c.path.shown);
     if (c.radius) {
         loaded.strands.radii.assign(loaded.strands.radii.size(), *c.radius);
@@ -171,17 +173,22 @@ void append_strands(Strands& into, const Strands& more) {
 Scene file_scene(const SceneDesc& d) {
     Scene s;
     if (d.curve_list) {
-        for (const CurveFileDesc& c : d.curves) append_strands(s.strands, load_curve_file(d, c));
+        for (const CurveFileDesc& c : d.curves) append_strands(s.strands, load_curve_file(d, c, s.notes));
         s.name = d.key + "/curves";
     } else if (!d.curves.empty()) {
-        s.strands = load_curve_file(d, d.curves.front());
+        s.strands = load_curve_file(d, d.curves.front(), s.notes);
         s.name = d.curves.front().path.shown;
     }
     if (d.mesh) {
-        s.mesh = load_mesh(d.mesh->path.path, d.mesh->format);
+        s.mesh = load_mesh(d.mesh->path.path, d.mesh->format, &s.notes);
         if (s.mesh.triangles.empty()) fail_at(d, d.mesh->path.key, "no faces in " + d.mesh->path.shown);
         if (s.name.empty()) s.name = d.mesh->path.shown;
     }
+    // One file read as curves and as mesh says its notes once.
+    std::vector<std::string> unique;
+    for (std::string& n : s.notes)
+        if (std::find(unique.begin(), unique.end(), n) == unique.end()) unique.push_back(std::move(n));
+    s.notes = std::move(unique);
     return s;
 }
 

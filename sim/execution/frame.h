@@ -9,6 +9,7 @@
 #include "core/uninitialized.h"
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/progress.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/leaf_programs.h"
@@ -158,6 +159,7 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
     Progress progress(fo.label, last - first, fo.progress);
 
     parallel_for(last - first, threads, [&, first = first](std::size_t slot, unsigned thread) {
+        throw_if_interrupted();  // Ctrl-C: parallel_for stops handing out rows and rethrows
         const std::size_t tile = first + slot;
         Tile& t = tile_out[slot];
         TraceScratch& sc = scratch[thread].s;

@@ -75,6 +75,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
     Progress progress(fo.label, last - first, fo.progress);
 
     parallel_for(last - first, threads, [&, first = first](std::size_t slot, unsigned thread) {
+        throw_if_interrupted();  // Ctrl-C: parallel_for stops handing out tiles and rethrows
         const std::size_t task = first + slot;
         Task& t = task_out[slot];
         t.warp.resize(priced);

@@ -23,6 +23,7 @@
 #include "sim/methods/common/method_adapter.h"
 #include "sim/methods/common/two_level_method.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -54,6 +55,22 @@ struct ClusterMethod {
         return programs.template finish<Mode>(ray);
     }
 };
+
+// The simulator's bytes per cluster of k >= 2 primitives beyond the shared
+// per-primitive figure: the cluster's own small BLAS, built one after another
+// on every core, leaves the C library's heap fragmented, far beyond the
+// structures' own ~550 B (report.json: simulator.structure_bytes). Measured
+// peaks (GNU time, max RSS, --threads 2, procedural fur, ref then cluster,
+// orientation and strand strategies alike), minus ref's 218 B per primitive:
+//   size 2: 0.25 M capsules 1.45 GB, 0.5 M 3.49 GB, 1 M 6.89 GB: 11-13.5 KB per cluster;
+//   size 4: 1 M 1.17 GB: 3.8 KB;  size 8: 1 M 0.27 GB and size 16: 0.27 GB: under 1 KB.
+// (The 20 M fur at size 2, 10 M clusters, needs ~135 GB: it was killed at
+// 24.3 GB while the estimate, without this term, said 7.82 GiB.) With margin:
+double bytes_per_cluster(int k) {
+    if (k < 4) return 16384.0;
+    if (k < 8) return 5120.0;
+    return 1536.0;
+}
 
 std::uint64_t cluster_count(const Geometry& g, const ClusterOptions& o) {
     if (o.strategy == ClusterStrategy::Strand) return strand_cluster_count(g.primitive_count(), g.strand_first, o.size);
@@ -114,6 +131,15 @@ MethodEntry cluster_method() {
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<ClusterMethod>>(
                     std::visit([&](const auto& prims) { return build_cluster(prims, g, o); }, g.prims));
+            },
+            nullptr,
+            [](double primitives, double strands, const MethodOptions& o) {
+                const double k = std::max(o.cluster.size, 1);
+                // Strand clusters do not cross strands: one part-filled per strand at most.
+                const double clusters = std::ceil(primitives / k) +
+                                        (o.cluster.strategy == ClusterStrategy::Strand && k > 1 ? strands : 0.0);
+                if (k == 1) return MethodFootprint{clusters, 200.0 * clusters};  // obb's (obb.cpp)
+                return MethodFootprint{clusters, clusters * (200.0 + bytes_per_cluster(o.cluster.size))};
             }};
 }
 

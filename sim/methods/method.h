@@ -74,6 +74,17 @@ public:
                                          TraversalMode mode = TraversalMode::Closest) const = 0;
 };
 
+// A method's own share of the simulator's peak memory, for the work estimate
+// (sim/run/work_estimate.h) before the scene is converted: the instances it
+// will build (a method over the preset's instance limit is not built, so
+// costs nothing) and the bytes its structures and their build take beyond
+// the per-primitive figure every method shares. Upper bounds, from measured
+// peaks (each method's file says which).
+struct MethodFootprint {
+    double instances = 1.0;
+    double bytes = 0.0;
+};
+
 struct MethodEntry {
     MethodInfo info;
     // May depend on the options (a method that groups primitives into instances).
@@ -84,6 +95,9 @@ struct MethodEntry {
     // hardware primitive that only fits some kinds), or empty when it can.
     // A run reports such a method as n/a with that reason; build() throws.
     std::function<std::string(const Geometry&)> not_applicable = nullptr;
+    // Optional: the method's footprint over `primitives` primitives in
+    // `strands` strands (0 for a mesh); unset: one instance, no bytes of its own.
+    std::function<MethodFootprint(double primitives, double strands, const MethodOptions&)> footprint = nullptr;
 };
 
 // The reason `entry` cannot run on `g`, or empty.

@@ -44,6 +44,14 @@ MethodEntry obb_method() {
             [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
                 return std::make_unique<BuiltMethodOf<TwoLevelMethod<ObbLeaf>>>(
                     std::visit([&](const auto& prims) { return build_obb(prims, g, o); }, g.prims));
+            },
+            nullptr,
+            // Measured (GNU time, max RSS, 2 threads): 1 M capsules of the
+            // procedural fur, ref then the masquerade (cluster size 1, obb
+            // count for count), 397 MB against 218 MB for ref alone: 179 B per
+            // instance (TLAS nodes, instances, build scratch); 200 with margin.
+            [](double primitives, double, const MethodOptions&) {
+                return MethodFootprint{primitives, 200.0 * primitives};
             }};
 }
 

@@ -160,6 +160,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     j["scene"] = scene_stats_json(s);
     j["scene"]["primitive_kind"] = std::string(kind_name(run.config.kind));
     j["scene"]["primitives"] = run.primitives;
+    if (!run.scene_notes.empty()) j["scene"]["notes"] = run.scene_notes;
     j["scene"]["surface_area"] = {{"aabb", run.areas.aabb},
                                   {"obb_paper", run.areas.obb_paper},
                                   {"obb_tight", run.areas.obb_tight},

@@ -1,5 +1,6 @@
 #include "sim/run/simulation.h"
 
+#include "sim/execution/interrupt.h"
 #include "sim/workload/ray_file.h"
 
 #include <algorithm>
@@ -165,11 +166,15 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(c.scene);
     r.load_seconds = seconds_since(t_load);
+    throw_if_interrupted();  // Ctrl-C: between phases (sim/execution/interrupt.h)
     check_work(estimate_scene_work(c, scene), ctx.limits, c.file);
     const auto t_convert = std::chrono::steady_clock::now();
     const Geometry geometry = make_geometry(scene, c.kind, c.subdivision);
     r.primitives = geometry.primitive_count();
     r.scene = compute_stats(scene);
+    r.scene_notes = scene.notes;
+    for (const std::string& note : scene.notes)  // warnings, printed under --quiet too
+        std::fprintf(stderr, "warning: %s (report.json: scene.notes)\n", note.c_str());
     if (r.scene.thin_segments > 0)  // a warning, printed under --quiet too
         std::fprintf(stderr,
                      "warning: %s: %zu of %zu segments are thinner than %g float ulps of their position "
@@ -185,6 +190,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     r.camera = frame.camera;
     bool rays_written = false;
     for (const std::string& name : c.methods) {
+        throw_if_interrupted();
         const MethodEntry& method = *find_method(name);  // names were checked when parsing
         MethodRun m;
         m.method = name;
@@ -210,6 +216,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
         const std::unique_ptr<BuiltMethod> built = method.build(geometry, build);
         m.build_seconds = seconds_since(t_build);
         if (!ctx.quiet) std::fprintf(stderr, " done in %.2f s\n", m.build_seconds);
+        throw_if_interrupted();  // a build is not interruptible inside: core knows nothing of signals
         m.structures = built->structures();
         m.simulator_bytes = built->simulator_bytes();
         FrameOptions fo;

@@ -43,6 +43,7 @@ struct RunResult {
     PointJson point;                   // set by the app for the reports; never read here
     std::string sweep_label;
     SceneStats scene;
+    std::vector<std::string> scene_notes;  // what the scene's files held and it drops (Scene::notes)
     AreaStats areas;
     std::uint64_t primitives = 0;
     std::vector<CostModel> costs;

@@ -4,6 +4,7 @@
 #include "core/input_error.h"
 #include "core/sinks.h"
 #include "sim/config/run_config.h"
+#include "sim/methods/method.h"
 
 #include <unistd.h>
 
@@ -27,6 +28,8 @@ constexpr double kBytesPerPrimitive = 420.0;
 constexpr double kBytesPerPixel = sizeof(RayCounts) + 3 * sizeof(float) + 16.0;
 constexpr double kBytesPerRecordedRay = 32.0 + 24.0;  // ray and hit, when written out
 constexpr double kBytesPerFileRay = 32.0 + 16.0;      // a ray workload held in memory
+// Each method's own share (obb's instances, cluster's BLASes) is the
+// method's to say: MethodEntry::footprint (sim/methods/method.h).
 
 }  // namespace
 
@@ -51,6 +54,32 @@ double procedural_primitives(const SceneDesc& scene, std::string& key) {
         return static_cast<double>(scene.hair.strands) * std::max(1.0, scene.hair.points_per_strand - 1.0);
     }
     return 0.0;
+}
+
+// The largest of the methods' own footprints (method.h: MethodFootprint)
+// over `primitives` in `strands`, with the method that has it; methods over
+// the memory preset's instance limit are not built and count nothing.
+std::pair<double, std::string> method_bytes(const RunConfig& c, double primitives, double strands) {
+    std::pair<double, std::string> largest{0.0, ""};
+    const double limit = c.memory ? static_cast<double>(c.memory->instance_limit) : INFINITY;
+    for (const std::string& name : c.methods) {
+        const MethodEntry* m = find_method(name);
+        if (!m || !m->footprint) continue;
+        const MethodFootprint f = m->footprint(primitives, strands, c.build);
+        if (f.instances <= limit && f.bytes > largest.first) largest = {f.bytes, name};
+    }
+    return largest;
+}
+
+// Adds the methods' term to `e` (primitives set), naming it when it is the largest.
+void add_method_bytes(const RunConfig& c, double strands, WorkEstimate& e) {
+    const auto [bytes, method] = method_bytes(c, e.primitives, strands);
+    e.memory_bytes += bytes;
+    if (bytes > 0.0 && bytes >= 0.5 * e.memory_bytes) {
+        e.memory_key = method == "cluster" ? "/cluster/size" : "/methods";
+        e.memory_detail = method + "'s structures over " + count_text(e.primitives) + " primitives" +
+                          (method == "cluster" ? " in clusters of " + std::to_string(c.build.cluster.size) : "");
+    }
 }
 
 }  // namespace
@@ -143,12 +172,14 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
         e.memory_key = c.output.write_rays ? "/output/rays" : "/output/hits";
         e.memory_detail = "recording " + count_text(e.rays) + " rays and hits";
     }
+    add_method_bytes(c, c.scene.type == SceneType::Hair ? static_cast<double>(c.scene.hair.strands) : 0.0, e);
     return e;
 }
 
 WorkEstimate estimate_scene_work(const RunConfig& c, const Scene& scene) {
     WorkEstimate e = estimate_config_work(c);
-    const double before = e.primitives * kBytesPerPrimitive;
+    const double strands = c.scene.type == SceneType::Hair ? static_cast<double>(c.scene.hair.strands) : 0.0;
+    const double before = e.primitives * kBytesPerPrimitive + method_bytes(c, e.primitives, strands).first;
     e.primitives = static_cast<double>(scene.strands.segment_count()) *
                        (c.kind == PrimitiveKind::Phantom ? c.subdivision : 1) +
                    static_cast<double>(scene.mesh.triangles.size());
@@ -160,6 +191,7 @@ WorkEstimate estimate_scene_work(const RunConfig& c, const Scene& scene) {
                           count_text(static_cast<double>(scene.strands.segment_count())) + " segments, " +
                           count_text(static_cast<double>(scene.mesh.triangles.size())) + " triangles)";
     }
+    add_method_bytes(c, static_cast<double>(scene.strands.strand_count()), e);
     return e;
 }
 

@@ -26,6 +26,14 @@ TEST_CASE("pbrt import: the fixture scene's curves, mesh, include and transforms
     CHECK(s.mesh_shapes == 1);
     REQUIRE(s.skipped_shapes.count("sphere") == 1);
     CHECK(s.skipped_shapes.at("sphere") == 1);
+    // What the scene drops is said, not silently lost (issue 40).
+    CHECK(s.camera == "perspective");
+    CHECK(s.film_resolution == std::array<double, 2>{64, 64});
+    REQUIRE(s.notes.size() == 3);
+    const std::string file = (kImportFixtures / "pbrt/scene.pbrt").string();
+    CHECK(s.notes[0] == file + ": 1 sphere shape skipped (only curves and triangle meshes are traced)");
+    CHECK(s.notes[1] == file + ": Camera \"perspective\" ignored (the config's workload.camera places the camera)");
+    CHECK(s.notes[2] == file + ": Film resolution 64 x 64 ignored (workload.width and workload.height set the image)");
     // Two cubic segments each, sampled at thirds: 7 points per strand.
     REQUIRE(s.curves.strand_count() == 2);
     CHECK(s.curves.offsets[1] == 7);
@@ -52,7 +60,23 @@ TEST_CASE("pbrt import: the fixture scene's curves, mesh, include and transforms
     const LoadedCurves c = load_curves(kImportFixtures / "pbrt/scene.pbrt");
     CHECK(c.has_radius);
     CHECK(c.strands.points.size() == 14);
-    CHECK(load_mesh(kImportFixtures / "pbrt/scene.pbrt").triangles.size() == 2);
+    CHECK(c.notes == s.notes);
+    std::vector<std::string> notes;
+    CHECK(load_mesh(kImportFixtures / "pbrt/scene.pbrt", MeshFormat::Auto, &notes).triangles.size() == 2);
+    CHECK(notes == s.notes);
+}
+
+TEST_CASE("pbrt import: skipped shapes are counted by type, Film without a resolution has pbrt's default") {
+    const auto path = scratch_file("skipped.pbrt",
+                                   "Film \"rgb\"\nWorldBegin\nShape \"sphere\"\nShape \"disk\"\nShape \"sphere\"\n"
+                                   "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n");
+    const PbrtScene s = load_pbrt(path);
+    REQUIRE(s.notes.size() == 2);
+    CHECK(s.notes[0] == path.string() + ": 1 disk, 2 sphere shapes skipped (only curves and triangle meshes are traced)");
+    CHECK(s.notes[1].find(": Film resolution 1280 x 720 ignored") != std::string::npos);
+    // A file that drops nothing says nothing.
+    CHECK(load_pbrt(scratch_file("clean.pbrt", "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] "
+                                               "\"integer indices\" [0 1 2]\n")).notes.empty());
 }
 
 TEST_CASE("pbrt import: curve bases and degrees lie on pbrt's curve") {

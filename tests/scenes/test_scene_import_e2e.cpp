@@ -52,6 +52,11 @@ TEST_CASE("scene import e2e: simulate runs a pbrt-v4 scene and a glTF mesh") {
     CHECK(a["methods"]["ref"]["events"]["is_call"]["total"].get<std::uint64_t>() > 0);
     CHECK(a["methods"]["ref"]["events"]["ray"]["total"] == a["methods"]["obb"]["events"]["ray"]["total"]);
     CHECK(a["methods"]["ref"]["events"]["ray"]["total"].get<std::uint64_t>() >= 24 * 24);
+    // The sphere, camera and film resolution it drops, once although the
+    // file is read as curves and as mesh.
+    REQUIRE(a["scene"]["notes"].size() == 3);
+    CHECK(a["scene"]["notes"][0].get<std::string>().ends_with("scene.pbrt: 1 sphere shape skipped (only curves and "
+                                                              "triangle meshes are traced)"));
 
     const nlohmann::json b = run_scene(
         "import_gltf", {{"type", "file"},
@@ -59,4 +64,5 @@ TEST_CASE("scene import e2e: simulate runs a pbrt-v4 scene and a glTF mesh") {
                         {"mesh", {{"path", (test::kImportFixtures / "gltf/quad.gltf").string()}}}});
     CHECK(b["scene"]["primitives"] == 12);
     CHECK(b["scene"]["triangles"] == 2);
+    CHECK(b["scene"]["notes"].size() == 3);  // the pbrt curves file's
 }

@@ -4,6 +4,7 @@
 // pbrt-v4's BasicSceneBuilder (the current transform multiplies on the right).
 #include "scenes/loaders/file_bytes.h"
 #include "scenes/loaders/loaders.h"
+#include "scenes/loaders/pbrt/notes.h"
 #include "scenes/loaders/pbrt/params.h"
 #include "scenes/loaders/pbrt/shapes.h"
 #include "scenes/generators/strand_builder.h"
@@ -50,7 +51,8 @@ const std::set<std::string_view> kSkippedShapes = {"sphere", "disk", "cylinder"}
 
 class Loader {
 public:
-    Loader(const PbrtLimits& limits, const fs::path& main) : limits_(limits), main_dir_(main.parent_path()) {}
+    Loader(const PbrtLimits& limits, const fs::path& main)
+        : limits_(limits), main_file_(main), main_dir_(main.parent_path()) {}
 
     void parse_file(const fs::path& file, const Tokenizer* from, std::size_t from_line) {
         auto fail_from = [&](const std::string& problem) {
@@ -98,10 +100,21 @@ public:
         out.mesh_shapes = world_.mesh_shapes;
         out.files = files_;
         out.skipped_shapes = std::move(skipped_);
+        out.camera = camera_;
+        out.film_resolution = film_resolution_;
+        out.notes = pbrt::scene_notes(out, main_file_);
         return out;
     }
 
 private:
+    // Film's x/yresolution for the note, of whatever numeric type the file
+    // gave (it was checked when read; the note should not reject a file).
+    static double resolution(const ParamList& params, const std::string& name, double fallback) {
+        for (const pbrt::Param& p : params.all())
+            if (p.name == name && p.numbers.size() == 1) return p.numbers[0];
+        return fallback;
+    }
+
     void finish(const Tokenizer& t) {
         if (!stack_.empty())
             throw InputError(stack_.back().file + ": line " + std::to_string(stack_.back().line) + ": " +
@@ -227,10 +240,13 @@ private:
         const std::string_view name = d.text;
         if (name == "Shape") return shape(t, d, file);
         if (kSkippedWithParams.count(name)) {
-            (void)word_arg(t, d, Token::Kind::String);
+            const std::string type = word_arg(t, d, Token::Kind::String);
             // pbrt-v4: the coordinate system "camera" is world-from-camera.
             if (name == "Camera" && glm::determinant(ctm_) != 0.0) named_["camera"] = glm::inverse(ctm_);
-            (void)ParamList::read(t);
+            if (name == "Camera") camera_ = type;
+            const ParamList params = ParamList::read(t);
+            if (name == "Film") film_resolution_ = {resolution(params, "xresolution", 1280),  // pbrt-v4's defaults
+                                                    resolution(params, "yresolution", 720)};
             return;
         }
         if (name == "Texture") {
@@ -326,7 +342,7 @@ private:
     }
 
     const PbrtLimits& limits_;
-    fs::path main_dir_;
+    fs::path main_file_, main_dir_;
     glm::dmat4 ctm_{1.0};
     bool transform_start_ = true;
     std::vector<Saved> stack_;
@@ -336,6 +352,8 @@ private:
     std::vector<fs::path> include_stack_;
     Geometry world_;
     std::map<std::string, std::size_t> skipped_;
+    std::string camera_;
+    std::array<double, 2> film_resolution_{0.0, 0.0};
     std::uint64_t bytes_ = 0, elements_ = 0;
     std::size_t files_ = 0;
 };
