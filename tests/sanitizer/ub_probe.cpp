@@ -1,5 +1,6 @@
 // A planted UBSan report (issue 38, item 12): built only in the sanitizer
-// build (RTCSIM_SANITIZE), run by two ctests (tests/CMakeLists.txt). It
+// builds (RTCSIM_SANITIZE, or RTCSIM_FUZZ: build-fuzz/, where scripts/test
+// --ci runs the sanitized suite), run by two ctests (tests/CMakeLists.txt). It
 // behaves like `simulate` given a rejected input, one line on stderr and
 // exit 2, but first overflows a signed int when given "overflow". The
 // end-to-end tests accept exit 2 with a message; a sanitizer report must
