@@ -13,8 +13,6 @@
 
 #include <doctest/doctest.h>
 
-#include <chrono>
-
 using namespace rtc;
 
 namespace {
@@ -174,29 +172,4 @@ TEST_CASE("intersect bounds: degenerate primitives give invertible, finite OBBs"
     }
     CHECK(oriented_bounds(point).contains(p, 0.0f));
     CHECK(bounds(Capsule{p, p, 1}).contains(p + Vec3(1, 0, 0)));
-}
-
-TEST_CASE("intersect timing: ns per call (reported, loosely bounded)") {
-    std::mt19937 rng(3);
-    std::vector<Capsule> caps;
-    std::vector<Ray> rays;
-    for (int i = 0; i < 1024; ++i) {
-        const Vec3 c(test::uniform(rng, -1, 1), test::uniform(rng, -1, 1), test::uniform(rng, -1, 1));
-        const Vec3 w = test::random_unit(rng);
-        caps.push_back({c - 0.2f * w, c + 0.2f * w, 0.01f});
-        rays.push_back(test::aim(rng, c + 0.02f * test::random_unit(rng), 3.0f));
-    }
-    NullSink sink;
-    int hits = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    constexpr int kRounds = 200;
-    for (int k = 0; k < kRounds; ++k) {
-        const std::size_t shift = std::size_t(k) % rays.size();  // mixes hits and misses
-        for (std::size_t i = 0; i < caps.size(); ++i)
-            hits += intersect(caps[i], rays[(i + shift) & 1023], sink).has_value();
-    }
-    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0)
-                          .count() / (kRounds * double(caps.size()));
-    MESSAGE("capsule intersect: " << ns << " ns per call (" << hits << " hits)");
-    CHECK(ns < 1000.0);  // loose: only catches a pathological slowdown
 }
