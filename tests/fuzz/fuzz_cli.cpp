@@ -15,16 +15,6 @@
 #include <string>
 #include <vector>
 
-namespace {
-const char* const kBase = R"({
-  "name": "tiny",
-  "scene": {"type": "bundle", "count": 60, "radius": 0.01, "tilt_deg": 30, "seed": 2},
-  "primitives": {"kind": "capsule"},
-  "methods": ["ref", "obb"],
-  "workload": {"type": "camera", "camera": "auto", "width": 8, "height": 8, "spp": 1, "bounces": 1}
-})";
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     std::vector<std::string> args;  // after the program name, as parse_cli takes them
@@ -46,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             const std::size_t points = size > 0 ? 1 + data[0] % 16 : 1;
             (void)rtc::units_of_shard(points, *cli.shard);
         }
-        nlohmann::json config = rtc::parse_json_text(kBase, "base.json");
+        nlohmann::json config = rtc::parse_json_text(rtc::fuzz::kTinyConfig, "base.json");
         for (const std::string& s : cli.sets) rtc::apply_set(config, s, "--set");
         rtc::WorkLimits limits = cli.limits;
         limits.max_rays = std::min(limits.max_rays, 1e6);

@@ -18,6 +18,16 @@
 
 namespace rtc::fuzz {
 
+// A small run config (tests/configs/tiny.json's shape) that the harnesses
+// apply --set lines to.
+inline constexpr const char* kTinyConfig = R"({
+  "name": "tiny",
+  "scene": {"type": "bundle", "count": 60, "radius": 0.01, "tilt_deg": 30, "seed": 2},
+  "primitives": {"kind": "capsule"},
+  "methods": ["ref", "obb"],
+  "workload": {"type": "camera", "camera": "auto", "width": 8, "height": 8, "spp": 1, "bounces": 1}
+})";
+
 // Where scratch files go: /dev/shm (memory) when there is one, since
 // rewriting a file on a virtual disk costs milliseconds, 10-100x the loader.
 inline const std::string& scratch_dir() {

@@ -3,16 +3,6 @@
 // lines applied to a small base config (tests/configs/tiny.json's shape).
 #include "fuzz_pipeline.h"
 
-namespace {
-const char* const kBase = R"({
-  "name": "tiny",
-  "scene": {"type": "bundle", "count": 60, "radius": 0.01, "tilt_deg": 30, "seed": 2},
-  "primitives": {"kind": "capsule"},
-  "methods": ["ref", "obb"],
-  "workload": {"type": "camera", "camera": "auto", "width": 8, "height": 8, "spp": 1, "bounces": 1}
-})";
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
@@ -26,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 if (end > at) sets.push_back(text.substr(at, end - at));
                 at = end + 1;
             }
-            rtc::fuzz::run_pipeline(rtc::parse_json_text(kBase, "base.json"), sets);
+            rtc::fuzz::run_pipeline(rtc::parse_json_text(rtc::fuzz::kTinyConfig, "base.json"), sets);
         }
     } catch (const rtc::InputError&) {
     }
