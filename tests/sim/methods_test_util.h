@@ -9,17 +9,22 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 namespace rtc::test {
 
 inline Vec3 thin_offset(Rng& rng, float lo, float hi) { return rng.direction() * rng.uniform(lo, hi); }
 
-inline PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n) {
+// Radii are drawn from [max(lo, min_radius), hi] (the default keeps every
+// kind's own range, and so every caller's scene).
+inline PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n, float min_radius = 0.0f) {
+    const auto radius = [&](float lo, float hi) { return rng.uniform(std::max(lo, min_radius), hi); };
     switch (kind) {
         case PrimitiveKind::Cylinder: {
             std::vector<Cylinder> v;
             for (int i = 0; i < n; ++i) {
                 const Vec3 p = rng.point(-1, 1);
-                v.push_back({p, p + thin_offset(rng, 0.1f, 0.6f), rng.uniform(0.002f, 0.03f)});
+                v.push_back({p, p + thin_offset(rng, 0.1f, 0.6f), radius(0.002f, 0.03f)});
             }
             return v;
         }
@@ -27,7 +32,7 @@ inline PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n) {
             std::vector<Capsule> v;
             for (int i = 0; i < n; ++i) {
                 const Vec3 p = rng.point(-1, 1);
-                v.push_back({p, p + thin_offset(rng, 0.0f, 0.6f), rng.uniform(0.002f, 0.03f)});
+                v.push_back({p, p + thin_offset(rng, 0.0f, 0.6f), radius(0.002f, 0.03f)});
             }
             return v;
         }
@@ -35,8 +40,8 @@ inline PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n) {
             std::vector<Link> v;
             for (int i = 0; i < n; ++i) {
                 const Vec3 p = rng.point(-1, 1);
-                v.push_back({p, rng.uniform(0.002f, 0.03f), p + thin_offset(rng, 0.0f, 0.6f),
-                             rng.uniform(0.002f, 0.03f)});
+                v.push_back({p, radius(0.002f, 0.03f), p + thin_offset(rng, 0.0f, 0.6f),
+                             radius(0.002f, 0.03f)});
             }
             return v;
         }
@@ -48,7 +53,7 @@ inline PrimitiveArray random_prims(Rng& rng, PrimitiveKind kind, int n) {
                 c.cp[0] = rng.point(-1, 1);
                 const Vec3 step = thin_offset(rng, 0.05f, 0.2f);
                 for (int k = 1; k < 4; ++k) c.cp[k] = c.cp[k - 1] + step + thin_offset(rng, 0.0f, 0.02f);
-                for (float& r : c.radius) r = rng.uniform(0.003f, 0.02f);
+                for (float& r : c.radius) r = radius(0.003f, 0.02f);
                 v.push_back(c);
             }
             return v;

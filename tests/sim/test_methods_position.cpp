@@ -13,29 +13,6 @@ using namespace rtc::test;
 
 namespace {
 
-// Hair-like primitives of radius 0.01 to 0.03 in [-1, 1]^3 (the issue's
-// "radius >= 0.01").
-PrimitiveArray thick_prims(Rng& rng, PrimitiveKind kind, int n) {
-    if (kind == PrimitiveKind::Capsule) {
-        std::vector<Capsule> v;
-        for (int i = 0; i < n; ++i) {
-            const Vec3 p = rng.point(-1, 1);
-            v.push_back({p, p + thin_offset(rng, 0.1f, 0.6f), rng.uniform(0.01f, 0.03f)});
-        }
-        return v;
-    }
-    std::vector<PhantomCurve> v;
-    for (int i = 0; i < n; ++i) {
-        PhantomCurve c;
-        c.cp[0] = rng.point(-1, 1);
-        const Vec3 step = thin_offset(rng, 0.05f, 0.2f);
-        for (int k = 1; k < 4; ++k) c.cp[k] = c.cp[k - 1] + step + thin_offset(rng, 0.0f, 0.02f);
-        for (float& r : c.radius) r = rng.uniform(0.01f, 0.02f);
-        v.push_back(c);
-    }
-    return v;
-}
-
 Geometry translated(const Geometry& g, const Vec3& offset) {
     Geometry out = g;
     std::visit(
@@ -73,19 +50,32 @@ std::vector<Ray> moved(std::vector<Ray> rays, const Vec3& offset) {
     return rays;
 }
 
+// The issue's scene: 200 primitives of radius >= 0.01 in [-1, 1]^3, a copy
+// moved by `offset`, and rays through the unmoved one.
+struct MovedScene {
+    Geometry near, far;
+    std::vector<Ray> rays;
+};
+
+MovedScene moved_scene(int seed, PrimitiveKind kind, const Vec3& offset, int ray_count) {
+    Rng rng(seed);
+    MovedScene s;
+    s.near.kind = kind;
+    s.near.prims = random_prims(rng, kind, 200, /*min_radius=*/0.01f);
+    s.far = translated(s.near, offset);
+    for (int i = 0; i < ray_count; ++i) s.rays.push_back(scene_ray(rng));
+    return s;
+}
+
 }  // namespace
 
 TEST_CASE("methods: event counts and the AABB/OBB area ratio stay within 1 % when the scene moves 1e3 from the origin") {
     const Vec3 offset(1000.0f, -1000.0f, 1000.0f);
     for (const PrimitiveKind kind : {PrimitiveKind::Capsule, PrimitiveKind::Phantom}) {
         CAPTURE(kind_name(kind));
-        Rng rng(38 + static_cast<int>(kind));
-        Geometry g;
-        g.kind = kind;
-        g.prims = thick_prims(rng, kind, 200);
-        const Geometry far = translated(g, offset);
-        std::vector<Ray> rays;
-        for (int i = 0; i < 3000; ++i) rays.push_back(scene_ray(rng));
+        const MovedScene scene = moved_scene(38 + static_cast<int>(kind), kind, offset, 3000);
+        const Geometry &g = scene.near, &far = scene.far;
+        const std::vector<Ray>& rays = scene.rays;
 
         const double ratio = area_stats(g.prims, 1).ratio_paper(), ratio_far = area_stats(far.prims, 1).ratio_paper();
         CAPTURE(ratio);
@@ -111,14 +101,9 @@ TEST_CASE("methods: 1e5 from the origin every method still returns ref's hit for
     const Vec3 offset(1e5f, 1e5f, -1e5f);
     for (const PrimitiveKind kind : {PrimitiveKind::Capsule, PrimitiveKind::Phantom}) {
         CAPTURE(kind_name(kind));
-        Rng rng(380 + static_cast<int>(kind));
-        Geometry g;
-        g.kind = kind;
-        g.prims = thick_prims(rng, kind, 200);
-        const Geometry far = translated(g, offset);
-        std::vector<Ray> rays;
-        for (int i = 0; i < 2000; ++i) rays.push_back(scene_ray(rng));
-        rays = moved(rays, offset);
+        const MovedScene scene = moved_scene(380 + static_cast<int>(kind), kind, offset, 2000);
+        const Geometry& far = scene.far;
+        const std::vector<Ray> rays = moved(scene.rays, offset);
         const Traced ref = trace_all("ref", far, rays);
         int hits = 0;
         for (const TraceHit& h : ref.hits) hits += h.hit();
