@@ -4,10 +4,20 @@ reproduction runs, with the rtcsim Python module.
 
 usage: scripts/make_reproduction.py RUNS_DIR [--images DIR] [--trace [SIZE]] [--update docs/reproduction.md] > tables.md
 
-RUNS_DIR holds fig3/, curly/, hair/, scivis/, memory/ as written by
+RUNS_DIR holds fig3/, curly/, hair/, hair_tight/, scivis/, memory/ as written by
   build/simulate configs/runs/<name>.json --out RUNS_DIR/<name>
-(or rtcsim.simulate). Prints the Markdown tables (synthetic table against the
-paper, hair and sci-vis predictions, memory) and writes into docs/images/:
+(or rtcsim.simulate; fig3/ by simulate calibrate, hair_tight/ by hair.json with
+the tight-OBB sweep of docs/reproduction.md). Prints the Markdown tables, each
+a generated block of docs/reproduction.md:
+  calibration  the shipped preset's fit (configs/hw/turing-calibrated.json: no runs needed)
+  synthetic    the synthetic table against the paper (fig3/)
+  refit        fig3/calibrated_preset.json against the shipped preset (fig3/)
+  table1       Table 1 on the curly stand-ins (curly/)
+  targets      the predictions against their targets (curly/ and fig3/)
+  hair, scivis predictions for the real models (hair/, scivis/)
+  tight        paper OBBs against tight ones (hair/ and hair_tight/)
+  memory       memory under three presets (memory/)
+and writes into docs/images/:
   speedup_vs_area_ratio.svg   speedup against the AABB/OBB area ratio, all runs
   fig3_speedup_vs_tilt.svg    the synthetic table's speedups against the tilt, with the paper's
 With --trace, also re-traces the N = 1000, r = 0.002, 45 degree bundle at
@@ -38,11 +48,17 @@ PRESET = "turing-calibrated"
 PER_RAY = "turing-per-ray-calibrated"
 
 
-def stamp(runs, config, presets):
+def commits_of(runs):
+    """The commits that made `runs` ("+dirty": from a tree with uncommitted changes)."""
+    return ", ".join(sorted({r.data.get("provenance", {}).get("git_commit", "unknown") +
+                             ("+dirty" if r.data.get("provenance", {}).get("git_dirty") else "") for r in runs}))
+
+
+def stamp(runs, config, presets, what=None):
     """Where a table came from: the commits that made its runs, the config,
-    the cost presets it shows and the memory preset(s)."""
-    commits = sorted({r.data.get("provenance", {}).get("git_commit", "unknown") +
-                      ("+dirty" if r.data.get("provenance", {}).get("git_dirty") else "") for r in runs})
+    the cost presets it shows and the memory preset(s). `what` replaces
+    "N runs of `configs/runs/CONFIG` at commit C" when the runs come from
+    more than one config (it then names each one's commit itself)."""
     memory = sorted({r.data.get("memory_preset") if isinstance(r.data.get("memory_preset"), str)
                      else (r.data.get("memory_preset") or {}).get("name", "?") for r in runs})
     draws = {r.config.get("uncertainty", {}).get("draws") for r in runs} - {None}
@@ -50,8 +66,9 @@ def stamp(runs, config, presets):
     costs = (f"cost preset{'s' if len(presets) > 1 else ''} {shown}"
              + (f" ({', '.join(str(d) for d in sorted(draws))} draws for the intervals)" if draws else "")
              if presets else "no cost preset (memory only)")
-    return (f"Made by `scripts/make_reproduction.py` from {len(runs)} runs of `configs/runs/{config}` at commit "
-            f"{', '.join(commits)}; {costs}, memory preset{'s' if len(memory) > 1 else ''} {', '.join(memory)}.")
+    what = what or f"{len(runs)} runs of `configs/runs/{config}` at commit {commits_of(runs)}"
+    return (f"Made by `scripts/make_reproduction.py` from {what}; {costs}, "
+            f"memory preset{'s' if len(memory) > 1 else ''} {', '.join(memory)}.")
 
 
 def fig3_table(runs, preset):
@@ -215,6 +232,223 @@ def memory_table(runs):
     return "\n".join(lines)
 
 
+def tight_table(hair, tight, preset):
+    """The paper's OBBs against tight ones (`"obb": "tight"`), masquerade
+    only: each run of `tight` beside the run of `hair` with the same model
+    and kind (`ref` is the same in both: the OBB choice changes no AABB)."""
+    paper = {(model_name(r), kind_label(r)): r for r in hair}
+    lines = ["| model | kind | AABB/OBB area, paper OBB -> tight OBB | obb IS calls per ray, paper OBB -> tight OBB "
+             "| speedup, paper OBB -> tight OBB |", "|---|---|---:|---:|---:|"]
+    used = []
+    for t in sorted(tight, key=lambda r: r.sweep_point.get("primitives.subdivision", 1)):  # stable: models in run order
+        r = paper.get((model_name(t), kind_label(t)))
+        if r is None:
+            continue
+        used.append(r)
+        s, st = r.speedup("obb", preset), t.speedup("obb", preset)
+        lines.append(f"| {model_name(t)} | {kind_label(t)} | {r.area_ratio():.2f} -> {t.area_ratio():.2f} | "
+                     f"{r.is_per_ray('obb'):.3f} -> {t.is_per_ray('obb'):.3f} | "
+                     f"{(f'{s:.2f}x' if s else 'n/a')} -> {(f'{st:.2f}x' if st else 'n/a')} |")
+    lines.append("")
+    lines.append(stamp(used + tight, "hair.json", [preset],
+                       what=f"{len(used)} runs of `configs/runs/hair.json` (runs/hair) at commit {commits_of(used)} and "
+                            f"{len(tight)} of the same config with `\"obb\": \"tight\"` (runs/hair_tight, the command "
+                            f"at the top) at commit {commits_of(tight)}"))
+    return "\n".join(lines)
+
+
+def fig3_cells(runs, preset):
+    """(N, tilt, paper, simulated speedup) of every synthetic cell."""
+    cells = {(r.sweep_point["scene.count"], r.sweep_point["scene.tilt_deg"]): r for r in runs}
+    return [(n, tilt, paper, cells[(n, tilt)].speedup("obb", preset))
+            for tilt, row in PAPER.items() for (n, _), paper in zip(CONFIGS, row)]
+
+
+# The targets of the issue that priced programs by their operations (251d070):
+# Table 1's capsule and link speedups within 15 %, the paper's ref cost ratios
+# (Table 1's rays/s: link about a capsule, phantom /1 at least 10x), and the
+# synthetic table as fitted. Paper values, not run results: the "target" column.
+LINK_RATIO = (0.9, 1.3)
+PHANTOM_RATIO = 10.0
+
+
+def targets_table(curly, fig3, preset):
+    """The predictions against their targets, from the Table 1 runs and the
+    synthetic runs; every "predicted" cell is computed from the runs."""
+    by_model = {}
+    for r in curly:
+        by_model.setdefault(model_name(r), {})[kind_label(r)] = r
+    lines = ["| prediction | target (paper values) | predicted (runs) | |", "|---|---|---|---|"]
+    for model, title in (("curly lock", "single curl"), ("curly head", "curly hair")):
+        kinds = by_model.get(model, {})
+        cells, errors = [], []
+        for kind in ("capsule", "link"):
+            r, target = kinds.get(kind), TABLE1[model][kind][1]
+            s = r.speedup("obb", preset) if r else None
+            if not s:
+                cells.append("n/a")
+                errors.append(None)
+                continue
+            iv = speedup_interval(r, preset)
+            cells.append(f"{s:.2f}x" + (f" [{iv[0]:.2f}-{iv[1]:.2f}]" if iv else ""))
+            errors.append(100 * (s / target - 1))
+        met = all(e is not None and abs(e) <= 15 for e in errors)
+        shown = " / ".join(cells) + " (" + " / ".join("n/a" if e is None else f"{e:+.1f} %" for e in errors) + ")"
+        lines.append(f"| capsule / link speedup, {title} | {TABLE1[model]['capsule'][1]:.2f}x / "
+                     f"{TABLE1[model]['link'][1]:.2f}x +/- 15 % | {shown} | {'met' if met else '**missed**'} |")
+
+    def ref_ratio(model, kind):
+        kinds = by_model.get(model, {})
+        r, c = kinds.get(kind), kinds.get("capsule")
+        return r.cycles_per_ray("ref", preset) / c.cycles_per_ray("ref", preset) if r and c else None
+
+    models = [m for m in ("curly lock", "curly head") if m in by_model]
+    short = {"curly lock": "lock", "curly head": "head"}
+    links = [(m, ref_ratio(m, "link")) for m in models]
+    met = all(v is not None and LINK_RATIO[0] <= v <= LINK_RATIO[1] for _, v in links)
+    lines.append(f"| ref cost per ray, link / capsule | {LINK_RATIO[0]}-{LINK_RATIO[1]} | "
+                 + ", ".join(f"{v:.2f} ({short[m]})" for m, v in links if v) + f" | {'met' if met else '**missed**'} |")
+    phantoms = [(m, ref_ratio(m, "phantom /1")) for m in models]
+    low = min((v for _, v in phantoms if v), default=None)
+    verdict = "met" if low and low >= PHANTOM_RATIO else (f"**missed, by {PHANTOM_RATIO / low:.1f}x**" if low else "n/a")
+    lines.append(f"| ref cost per ray, phantom /1 / capsule | >= {PHANTOM_RATIO:g} | "
+                 + ", ".join(f"{v:.1f} ({short[m]})" for m, v in phantoms if v) + f" | {verdict} |")
+    cells = fig3_cells(fig3, preset)
+    misses = [(n, t, 100 * (s / p - 1)) for n, t, p, s in cells if abs(s / p - 1) > 0.1]
+    n1000 = [(t, s) for n, t, _, s in cells if n == 1000 and t > 0]
+    peak = max(n1000, key=lambda ts: ts[1])[0]
+    met = len(cells) - len(misses) >= 15 and peak == 15
+    lines.append(f"| synthetic table at 800 x 800 (fitted) | >= 15/16 within 10 %, N = 1000 peaks at 15 deg | "
+                 f"{len(cells) - len(misses)}/{len(cells)}"
+                 + (" (" + "; ".join(f"{t} deg, N = {n}: {e:+.1f} %" for n, t, e in misses) + ")" if misses else "")
+                 + ", N = 1000 at 15 / 30 / 45 deg: " + " / ".join(f"{s:.2f}" for _, s in n1000)
+                 + f" (peak at {peak} deg) | {'met' if met else '**missed**'} |")
+    lines.append("")
+    lines.append(stamp(curly + fig3, "", [preset],
+                       what=f"{len(curly)} runs of `configs/runs/curly_table1.json` at commit {commits_of(curly)} "
+                            f"and {len(fig3)} of `configs/runs/fig3_bundles.json` at commit {commits_of(fig3)}"))
+    return "\n".join(lines)
+
+
+# The fit's parameters (configs/hw/turing-calibrated.json's uncertainty block),
+# in its order: what the calibration and refit tables call them.
+FIT_NAMES = {"context_switch": ("`context_switch`", "a warp-level hand-off from the RT unit to the SM and back "
+                                "(rt-hardware.md §1 [I])"),
+             "ray": ("`ray`", "per-wave ray generation and shading, paid once by the lockstep lanes"),
+             "instance_transform": ("`instance_transform`", "fetching an instance and transforming the ray"),
+             "tlas_node_visit": ("TLAS node visit / box test", "a scale on Vulkan-Sim-range starting costs"),
+             "blas_node_visit": ("BLAS node visit / box test", "the same, BLAS levels apart"),
+             "op_fma": ("`op_fma`, `op_div`, `op_sqrt`, `op_branch`, `op_load`", "one scale on the CUDA Guide's "
+                        "throughput prices (their ratios stay the Guide's)")}
+
+
+def preset_json(name):
+    with open(os.path.join(ROOT, "configs", "hw", name + ".json")) as f:
+        return json.load(f)
+
+
+def git_last_commit(path):
+    import subprocess
+    try:
+        return subprocess.run(["git", "log", "-1", "--format=%h", "--", path], cwd=ROOT, capture_output=True,
+                              text=True, check=True).stdout.strip() or "uncommitted"
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def fit_parameters(preset):
+    """[(parameter, log standard error or None)] of a fitted preset's uncertainty block."""
+    u = preset["uncertainty"]
+    free = [q for q in u["parameters"] if q["free"]]
+    se = {id(q): math.sqrt(u["covariance"][i][i]) for i, q in enumerate(free)}
+    return [(q, se.get(id(q))) for q in u["parameters"]]
+
+
+def at_bound(q):
+    return "lower" if q["value"] <= q["min"] * (1 + 1e-9) else ("upper" if q["value"] >= q["max"] * (1 - 1e-9) else None)
+
+
+def calibration_table(shipped="turing-calibrated", start="turing-warp-guess"):
+    """The shipped warp preset's fit: each parameter's start (the guess preset),
+    fitted value, bounds and standard error, read from the presets' files."""
+    fit, guess = preset_json(shipped), preset_json(start)
+    lines = ["| fitted cost (warp) | start | fitted | bounds and meaning | how well determined |",
+             "|---|---:|---:|---|---|"]
+    g = lambda e: guess["cycles"][e]["value"]
+    f = lambda e: fit["cycles"][e]["value"]
+    for q, se in fit_parameters(fit):
+        e = q["events"][0]
+        name, meaning = FIT_NAMES.get(e, (" / ".join(f"`{x}`" for x in q["events"]), ""))
+        bound = at_bound(q)
+        if q["tie"] == "scale":
+            starts = " / ".join(f"{g(x):.3g}" if len(q["events"]) <= 2 else f"{g(x):g}" for x in q["events"])
+            fitted = " / ".join(f"{f(x):.2g}" for x in q["events"])
+            sep = " / " if len(q["events"]) <= 2 else ", "
+            starts, fitted = starts.replace(" / ", sep), fitted.replace(" / ", sep)
+            how = (f"at its {bound} bound" if bound else
+                   f"scale {q['value']:.2g} +/- {q['value'] * se:.2g}" if se else f"scale {q['value']:.2g}")
+            bounds = f"scale {q['min']:g}..{q['max']:g}: {meaning}"
+        else:
+            starts, fitted = f"{g(e):g}", f"{q['value']:.3g}"
+            how = f"at its {bound} bound" if bound else (f"+/- {q['value'] * se:.2g}" if se else "fixed")
+            bounds = f"{q['min']:g}..{q['max']:g}: {meaning}"
+        lines.append(f"| {name} | {starts} | {fitted} | {bounds} | {how} |")
+    lines.append("")
+    lines.append(f"Made by `scripts/make_reproduction.py` from `configs/hw/{shipped}.json` (its `uncertainty` block: "
+                 f"fitted values, bounds, covariance; last changed at commit {git_last_commit(f'configs/hw/{shipped}.json')}) "
+                 f"and the starting costs of `configs/hw/{start}.json`; +/- is the value times its log standard error.")
+    return "\n".join(lines)
+
+
+def refit_table(fig3, runs_dir, shipped="turing-calibrated"):
+    """The refit of `simulate calibrate` (RUNS/fig3/calibrated_preset.json)
+    against the shipped preset: each parameter's change in units of the
+    shipped fit's standard error, and how far the refit's speedups move."""
+    path = os.path.join(runs_dir, "fig3", "calibrated_preset.json")
+    if not os.path.isfile(path):
+        return None
+    with open(path) as f:
+        refit = json.load(f)
+    ship = preset_json(shipped)
+    commit = commits_of(fig3)
+    lines = ["| parameter | shipped | refit | change | shipped log standard error | change / standard error |",
+             "|---|---:|---:|---:|---:|---:|"]
+    moves = []
+    for (q, se), r in zip(fit_parameters(ship), refit["uncertainty"]["parameters"]):
+        name = FIT_NAMES.get(q["events"][0], (q["events"][0], ""))[0]
+        if q["tie"] == "scale":
+            name = {"tlas_node_visit": "TLAS traversal scale", "blas_node_visit": "BLAS traversal scale",
+                    "op_fma": "operation-class scale"}.get(q["events"][0], name + " scale")
+        change = r["value"] / q["value"] - 1
+        if not q["free"] and not r["free"]:
+            both = at_bound(q) if at_bound(q) == at_bound(r) else None
+            lines.append(f"| {name} | {q['value']:.4g} | {r['value']:.4g} | {100 * change:+.1f} % | - | "
+                         f"{f'at its {both} bound in both' if both else 'not free'} |")
+            continue
+        z = abs(math.log(r["value"] / q["value"])) / se if se else float("nan")
+        moves.append(z)
+        lines.append(f"| {name} | {q['value']:.4g} | {r['value']:.4g} | {100 * change:+.1f} % | {se:.2f} | {z:.2f} |")
+    lines.append("")
+    summary = ""
+    md = os.path.join(runs_dir, "fig3", "calibration.md")
+    if os.path.isfile(md):
+        with open(md) as f:
+            text = f.read()
+        head = text.splitlines()[0].rstrip(".")
+        # The refit's speedups (its "fitted" column) against the shipped preset's on the same traces.
+        fitted = [float(row.split("|")[4]) for row in text.splitlines()
+                  if row.startswith("| scene.count=")]
+        shipped_s = [s for _, _, _, s in sorted(fig3_cells(fig3, PRESET), key=lambda c: (c[0], c[1]))]
+        if len(fitted) == len(shipped_s):
+            summary = (f"{head}. The refit's speedups are within {max(abs(a - b) for a, b in zip(fitted, shipped_s)):.3f} "
+                       f"of the shipped preset's on the same traces in every synthetic cell; the largest move of a free "
+                       f"parameter is {max(moves):.2f} of its standard error.\n\n")
+    lines.append(summary + f"Made by `scripts/make_reproduction.py` from `simulate calibrate configs/runs/fig3_bundles.json` "
+                 f"(RUNS/fig3/calibrated_preset.json and calibration.md) at commit {commit}, against "
+                 f"`configs/hw/{shipped}.json` (last changed at commit {git_last_commit(f'configs/hw/{shipped}.json')}).")
+    return "\n".join(lines)
+
+
 def tilt_figure(runs, preset):
     fig = plot.speedup_vs_axis(runs, "scene.tilt_deg", preset, "obb",
                                title=f"synthetic bundles: speedup vs tilt ({preset}); dashed: the paper")
@@ -246,18 +480,26 @@ def trace_heatmaps(size, images):
 
 
 def splice(path, blocks):
-    """Replaces each named generated block of `path` with its new text."""
+    """Replaces each named generated block of `path` with its new text; returns
+    the names of the blocks `path` does not have (left out, said on stderr)."""
     with open(path) as f:
         doc = f.read()
+    absent = []
     for name, text in blocks.items():
         begin = f"<!-- generated by scripts/make_reproduction.py {name}: begin -->"
         end = f"<!-- generated by scripts/make_reproduction.py {name}: end -->"
+        if begin not in doc and end not in doc:
+            absent.append(name)
+            continue
         if begin not in doc or end not in doc:
-            raise SystemExit(f"{path}: no generated block {name!r} ({begin} ... {end})")
+            raise SystemExit(f"{path}: generated block {name!r} has only one of its markers ({begin} ... {end})")
         head, rest = doc.split(begin, 1)
         doc = head + begin + "\n" + text + "\n" + end + rest.split(end, 1)[1]
     with open(path, "w") as f:
         f.write(doc)
+    if absent:
+        print(f"{path}: no generated block for {', '.join(absent)}: those tables only printed", file=sys.stderr)
+    return absent
 
 
 def main():
@@ -271,35 +513,48 @@ def main():
     args = parser.parse_args()
 
     blocks = {}  # block name -> table, for --update
-    fig3 = rtcsim.load_reports(os.path.join(args.runs_dir, "fig3"))
+
+    def show(name, title, text):
+        blocks[name] = text
+        print(f"\n## {title}\n")
+        print(text)
+
+    def load(name):
+        path = os.path.join(args.runs_dir, name)
+        return rtcsim.load_reports(path) if os.path.isdir(path) else []
+
+    show("calibration", "Calibration (the shipped preset's fit)", calibration_table())
+    fig3 = load("fig3")
     groups = {}
     if fig3:
-        blocks["synthetic"] = fig3_table(fig3, PRESET)
-        print("## Synthetic table (calibrated preset)\n")
-        print(blocks["synthetic"])
+        show("synthetic", "Synthetic table (calibrated preset)", fig3_table(fig3, PRESET))
         groups["synthetic bundles"] = [(r.area_ratio(), s, "") for r in fig3 if (s := r.speedup("obb", PRESET))]
+        refit = refit_table(fig3, args.runs_dir)
+        if refit:
+            show("refit", "Refit check", refit)
+    runs_by_name = {}
     for name, config in (("hair", "hair.json"), ("scivis", "scivis.json")):
-        runs = rtcsim.load_reports(os.path.join(args.runs_dir, name))
+        runs = runs_by_name[name] = load(name)
         if not runs:
             continue
         table, points = model_table(runs, PRESET)
-        blocks[name] = table + "\n\n" + stamp(runs, config, [PRESET])
-        print(f"\n## {name}\n")
-        print(blocks[name])
+        show(name, name, table + "\n\n" + stamp(runs, config, [PRESET]))
         groups[name + " models"] = points
-    curly = rtcsim.load_reports(os.path.join(args.runs_dir, "curly"))
+    tight = load("hair_tight")
+    if tight and runs_by_name["hair"]:
+        show("tight", "Tighter OBBs", tight_table(runs_by_name["hair"], tight, PRESET))
+    curly = load("curly")
     if curly:
-        blocks["table1"] = table1_predictions(curly, PRESET)
-        print(f"\n## Table 1 predictions (curly stand-ins, {PRESET})\n")
-        print(blocks["table1"])
-    mem = rtcsim.load_reports(os.path.join(args.runs_dir, "memory"))
+        show("table1", f"Table 1 predictions (curly stand-ins, {PRESET})", table1_predictions(curly, PRESET))
+    if curly and fig3:
+        show("targets", "Against the targets", targets_table(curly, fig3, PRESET))
+    mem = load("memory")
     if mem:
-        blocks["memory"] = memory_table(mem)
-        print("\n## memory\n")
-        print(blocks["memory"])
+        show("memory", "memory", memory_table(mem))
     if args.update:
         splice(args.update, blocks)
-        missing = sorted({"synthetic", "hair", "scivis", "table1", "memory"} - set(blocks))
+        missing = sorted({"calibration", "synthetic", "refit", "hair", "scivis", "tight", "table1", "targets",
+                          "memory"} - set(blocks))
         if missing:
             print(f"{args.update}: no runs for {', '.join(missing)}: those blocks left as they were", file=sys.stderr)
     os.makedirs(args.images, exist_ok=True)

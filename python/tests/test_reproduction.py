@@ -18,6 +18,7 @@ def test_make_reproduction(simulate, tmp_path):
         (TINY, "hair", CALIBRATED + ["--set", 'sweep={"primitives.kind": ["capsule", "phantom"]}']),
         (TINY, "memory", CALIBRATED + ["--set", 'sweep={"memory": ["memory-optix7", '
                                                 '"memory-dxr"]}']),
+        (TINY, "hair_tight", CALIBRATED + ["--set", 'sweep={"primitives": [{"kind": "phantom", "obb": "tight"}]}']),
     ]
     for config, name, extra in steps:
         cli = simulate(config, "--quiet", "--out", runs / name, *SMALL, *extra)
@@ -28,7 +29,9 @@ def test_make_reproduction(simulate, tmp_path):
                          capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
     assert out.returncode == 0, out.stderr
     text = out.stdout
-    assert text.startswith("## Synthetic table (calibrated preset)\n")
+    assert "\n## Synthetic table (calibrated preset)\n" in text
+    # The calibration table is read from the shipped preset, and says so.
+    assert "| `context_switch` | 200 | 100 |" in text and "from `configs/hw/turing-calibrated.json`" in text
     assert "| cells within +/-10 % |" in text
     assert "runs of `configs/runs/fig3_bundles.json` at commit " in text  # every table says where it came from
     for section in ("## hair", "## memory"):
@@ -42,6 +45,11 @@ def test_make_reproduction(simulate, tmp_path):
             f"**{cell.speedup('obb', 'turing-calibrated'):.3f}**") in row
     assert "| tiny | phantom /1 | 60 |" in text
     assert "| tiny | 60 | memory-dxr |" in text
+    # The tight-OBB table: each tight run beside the hair run of the same kind, stamped with both.
+    tight = text.split("## Tighter OBBs\n", 1)[1]
+    row = next(line for line in tight.splitlines() if line.startswith("| tiny | phantom /1 | "))
+    assert row.count(" -> ") == 3
+    assert "of the same config with `\"obb\": \"tight\"`" in tight.split("\n## ", 1)[0]
     assert sorted(os.listdir(images)) == [
         "fig3_n1000_r0.002_45deg_cycles_obb.png", "fig3_n1000_r0.002_45deg_cycles_ref.png",
         "fig3_n1000_r0.002_45deg_ratio.png", "fig3_speedup_vs_tilt.svg", "speedup_vs_area_ratio.svg"]
