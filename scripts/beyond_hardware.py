@@ -183,27 +183,227 @@ def break_even_table(runs, kinds=("capsule",)):
     return "\n".join(lines)
 
 
+def _crossings(cells, axis, at):
+    """Along the row (axis "x") or column ("y") of the map through `at` (the
+    other axis' mark): the winners in order with the axis values where they
+    change (geometric mean of the two cells' centres), and the range of the
+    cells in doubt (their centres), from a break_even_<name>.json."""
+    nx, ny = cells["nx"], cells["ny"]
+    other = cells["y" if axis == "x" else "x"]
+    n_other = ny if axis == "x" else nx
+    k = int(n_other * math.log(at / other["lo"]) / math.log(other["hi"] / other["lo"]))
+    k = min(max(k, 0), n_other - 1)
+    a = cells[axis]
+    n = nx if axis == "x" else ny
+    centre = lambda i: a["lo"] * (a["hi"] / a["lo"]) ** ((i + 0.5) / n)
+    idx = [k * nx + i for i in range(nx)] if axis == "x" else [i * nx + k for i in range(ny)]
+    winners = [cells["winner"][i] for i in idx]
+    low = cells.get("band_low") or [None] * len(cells["winner"])
+    doubt = [j for j, i in enumerate(idx) if cells["winner"][i] >= 0 and low[i] is not None and low[i] <= 1.0]
+    parts = []
+    for j, w in enumerate(winners):
+        name = cells["methods"][w] if w >= 0 else "none"
+        if not parts or parts[-1][0] != name:
+            parts.append([name, math.sqrt(centre(j - 1) * centre(j)) if j else None])
+    return parts, ((centre(min(doubt)), centre(max(doubt))) if doubt else None)
+
+
+def _crossing_text(parts):
+    if len(parts) == 1:
+        return "%s everywhere" % parts[0][0]
+    return ", ".join(("%s" % name) if at is None else ("%s from ~%.3g" % (name, at)) for name, at in parts)
+
+
+def obb_vs_ref_table(runs, directory, kinds=("capsule",)):
+    """Where obb stops paying against ref, read from each obb_vs_ref map's
+    cells: along the mark's row (the hand-off swept at the preset's own
+    transform) and its column (the transform swept at the preset's hand-off),
+    the winners with the costs where they change, and the costs the draws
+    leave in doubt (the hatched cells there)."""
+    lines = ["| run | preset | hand-off swept (at the preset's transform): winners | in doubt | "
+             "transform swept (at the preset's hand-off): winners | in doubt |", "|---|---|---|---|---|---|"]
+    for r in runs:
+        if label(r).split(" ")[0] not in kinds:
+            continue
+        for m in r.get("break_even", []):
+            if not m["name"].startswith("obb_vs_ref"):
+                continue
+            with open(os.path.join(directory, r["_label"], m["cells"])) as f:
+                cells = json.load(f)
+            row, row_doubt = _crossings(cells, "x", m["mark"]["y"])
+            col, col_doubt = _crossings(cells, "y", m["mark"]["x"])
+            span = lambda d: "%.3g-%.3g" % d if d else "none"
+            lines.append("| %s | %s (hand-off %.3g, transform %.3g) | %s | %s | %s | %s |" % (
+                label(r), m["preset"], m["mark"]["x"], m["mark"]["y"], _crossing_text(row), span(row_doubt),
+                _crossing_text(col), span(col_doubt)))
+    return "\n".join(lines)
+
+
+def _fastest(r, p):
+    """The fastest method `p`'s hardware runs (not hypothetical) on run `r`, and its speedup."""
+    best, best_s = "ref", 1.0
+    for method, sp in r["speedup_over_ref"].items():
+        v = sp.get(p)
+        if v and "hypothetical" not in r["methods"][method]["cycles"].get(p, {}) and v > best_s:
+            best, best_s = method, v
+    return best
+
+
+def answers_table(runs, directory, hair=("capsule sintel", "link sintel"), bundle="capsule bundle1000"):
+    """Per preset: the fastest method on the real hair (capsules / links) and
+    the dense bundle, with the masquerade beside it when it is another, the
+    memory, and where obb stops paying against ref (its obb_vs_ref maps)."""
+    by = {label(r): r for r in runs}
+    if not all(k in by for k in hair + (bundle,)):
+        return ""
+    presets = preset_names(runs[0])
+    lines = ["| preset | real hair, Sintel capsules / links: fastest | its memory (capsules): total, over ref | "
+             "dense bundle (capsules): fastest | obb against ref (obb_vs_ref maps, capsules): obb wins from a hand-off "
+             "of (at the preset's transform), up to a transform of (at the preset's hand-off); [in doubt] |",
+             "|---|---|---|---|---|"]
+    for p in presets:
+        caps, links, bun = by[hair[0]], by[hair[1]], by[bundle]
+        b = _fastest(caps, p)
+        text = "%s %s / %s" % (b, cell(caps, b, p), cell(links, _fastest(links, p), p)
+                               if _fastest(links, p) == b else "%s %s" % (_fastest(links, p), cell(links, _fastest(links, p), p)))
+        if b != "obb":
+            text += "; obb %s / %s" % (cell(caps, "obb", p), cell(links, "obb", p))
+        m = caps["methods"][b]["memory_bytes"]["total"] / MIB
+        over = caps["memory_overhead_percent"].get(b, 0.0) if b != "ref" else 0.0
+        bb = _fastest(bun, p)
+        btext = "%s %s" % (bb, cell(bun, bb, p)) + ("; obb %s" % cell(bun, "obb", p) if bb != "obb" else "")
+        stops = []
+        for name, r in (("Sintel", caps), ("bundle", bun)):
+            m_ = next((x for x in r.get("break_even", []) if x["name"].startswith("obb_vs_ref") and x["preset"] == p), None)
+            if not m_:
+                continue
+            with open(os.path.join(directory, r["_label"], m_["cells"])) as f:
+                cells = json.load(f)
+            row, rd = _crossings(cells, "x", m_["mark"]["y"])
+            col, cd = _crossings(cells, "y", m_["mark"]["x"])
+            at = lambda parts, who: next(("~%.3g" % x for n, x in parts if n == who and x), None)
+            frm = at(row, "obb") or ("any" if row[0][0] == "obb" and len(row) == 1 else "never")
+            upto = at(col, "ref") or ("any" if col[0][0] == "obb" and len(col) == 1 else "none")
+            span = lambda d: " [%.3g-%.3g]" % d if d else ""
+            stops.append("%s: from %s%s, up to %s%s" % (name, frm, span(rd), upto, span(cd)))
+        lines.append("| %s | %s | %.1f MiB, %+.0f%% | %s | %s |" % (
+            p, text, m, over, btext, "; ".join(stops) or "no obb_vs_ref map (see the all-method maps)"))
+    return "\n".join(lines)
+
+
+def _short_source(text):
+    """"[D] NVIDIA GA102 whitepaper, 2020: twice ..." -> ("D", "NVIDIA GA102 whitepaper, 2020")."""
+    tag, rest = "", text.strip()
+    if rest.startswith("[") and "]" in rest:
+        tag, rest = rest[1:rest.index("]")], rest[rest.index("]") + 1:].strip()
+    import re
+    if not tag:  # a tag at the end: "... (CUDA Programming Guide) [D]."
+        m = re.search(r"\[([DMCI])\]", rest)
+        tag = m.group(1) if m else ""
+    for stop in (": ", "; ", ". "):
+        if stop in rest:
+            rest = rest[:rest.index(stop)]
+    cut = len(rest) > 80
+    rest = rest[:77] if cut else rest
+    if rest.count("(") > rest.count(")"):  # no half parenthesis
+        rest, cut = rest[:rest.rindex(" (")], True
+    return tag, rest + ("..." if cut else "")
+
+
+def _delta_text(d):
+    events = ", ".join("`%s`" % e for e in d["events"])
+    if "scale" in d:
+        what = "%s x%g" % (events, d["scale"])
+    elif "sum_of" in d:
+        what = "%s = %s" % (events, " + ".join("%g %s" % (v, k) for k, v in d["sum_of"].items()))
+    else:
+        what = "%s = %g" % (events, d.get("value", float("nan")))
+    tag, short = _short_source(d.get("source", ""))
+    return "%s [%s: %s]" % (what, tag or "?", short)
+
+
+def preset_table(names, root):
+    """Each hardware preset as its file states it: what it derives from, its
+    deltas with their tags and the first clause of their sources, its
+    execution-model changes and the features it adds over the one before."""
+    lines = ["| preset | derived from | deltas [tag: source, first clause] | features added |", "|---|---|---|---|"]
+    features = {}
+    for name in names:
+        with open(os.path.join(root, "configs", "hw", name + ".json")) as f:
+            j = json.load(f)
+        parent = (j.get("derived_from") or "").replace(".json", "")
+        feats = j.get("features", [])
+        features[name] = feats
+        deltas = [_delta_text(d) for d in j.get("deltas", [])]
+        for key, v in (j.get("execution") or {}).items() if parent else ():
+            if isinstance(v, dict) and "value" in v:
+                val = v["value"]
+                tag, short = _short_source(v.get("source", ""))
+                deltas.append("execution `%s` = %s [%s: %s]" % (
+                    key, ", ".join(map(str, val)) if isinstance(val, list) else val, tag or "?", short))
+        base = features.get(parent)
+        if base is None and parent:
+            with open(os.path.join(root, "configs", "hw", parent + ".json")) as f:
+                base = json.load(f).get("features", [])
+        added = [x for x in feats if x not in (base or [])] if parent else []
+        lines.append("| %s | %s | %s | %s |" % (name, parent or "- (fitted)", "; ".join(deltas) or (
+                     "-" if parent else "- (fitted to the synthetic table; the SIMT warp model)"),
+                                                ", ".join(added) or "-"))
+    return "\n".join(lines)
+
+
 def report(directory):
     runs = load(directory)
     parts = [provenance(runs), "", "### Speedup over ref, 90 % interval", "", speedup_table(runs), "",
              "### Where the cycles go", "", decomposition(runs), "### Memory on the Sintel hair (memory preset of the run)",
              "", memory_table(runs), "", "### Which method to build", "", recommendations(runs), "",
              "### Where each stops paying: the break-even maps at the mark, and the band the draws leave in doubt", "",
-             break_even_table(runs)]
+             break_even_table(runs), "", "Where obb stops paying against ref (the obb_vs_ref maps through the mark; "
+             "costs in cycles, \"from ~X\": the cost where the winner changes, between two cells' centres):", "",
+             obb_vs_ref_table(runs, directory)]
     return "\n".join(parts) + "\n"
 
 
-BEGIN = "<!-- generated by scripts/make_beyond.py hardware: begin -->"
-END = "<!-- generated by scripts/make_beyond.py hardware: end -->"
+def presets_block(directory, root):
+    """The preset table of the runs' cost presets, read from configs/hw, with its stamp."""
+    import subprocess
+    runs = load(directory)
+    names = preset_names(runs[0])
+    try:
+        commit = subprocess.run(["git", "log", "-1", "--format=%h", "--"] +
+                                ["configs/hw/%s.json" % n for n in names], cwd=root, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--"] + ["configs/hw/%s.json" % n for n in names],
+                               cwd=root, capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit, dirty = "unknown", ""
+    return (preset_table(names, root) + "\n\nMade by `scripts/make_beyond.py hardware` from `configs/hw/<preset>.json` "
+            "of the cost presets of the runs below (%s), as last changed at commit %s%s; the runs below are of "
+            "commit %s.\n" % (", ".join(names), commit or "uncommitted", " (+ uncommitted changes)" if dirty else "",
+                              ", ".join(sorted({r["provenance"]["git_commit"] for r in runs}))))
 
 
-def splice(path, text):
-    """Replaces the block between BEGIN and END in `path` with `text`."""
+def blocks(directory, root):
+    """{generated block name: text} of docs/beyond.md Part I."""
+    runs = load(directory)
+    answers = answers_table(runs, directory)
+    out = {"hardware": report(directory), "hardware-presets": presets_block(directory, root)}
+    if answers:
+        out["hardware-answers"] = answers + "\n\n" + provenance(runs) + "\n"
+    return out
+
+
+def splice(path, texts):
+    """Replaces each block "<!-- generated by scripts/make_beyond.py NAME: begin -->"
+    ... "end -->" in `path` with its text."""
     with open(path) as f:
         doc = f.read()
-    if BEGIN not in doc or END not in doc:
-        raise SystemExit("%s: no generated block (%s ... %s)" % (path, BEGIN, END))
-    head, rest = doc.split(BEGIN, 1)
-    tail = rest.split(END, 1)[1]
+    for name, text in texts.items():
+        begin = "<!-- generated by scripts/make_beyond.py %s: begin -->" % name
+        end = "<!-- generated by scripts/make_beyond.py %s: end -->" % name
+        if begin not in doc or end not in doc:
+            raise SystemExit("%s: no generated block (%s ... %s)" % (path, begin, end))
+        head, rest = doc.split(begin, 1)
+        doc = head + begin + "\n" + text + end + rest.split(end, 1)[1]
     with open(path, "w") as f:
-        f.write(head + BEGIN + "\n" + text + END + tail)
+        f.write(doc)

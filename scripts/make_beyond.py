@@ -4,7 +4,9 @@
 usage: scripts/make_beyond.py hardware [--update docs/beyond.md] RUN_DIR > part1.md
   Part I (the hardware after Turing): RUN_DIR is the output of
   build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py);
-  --update replaces the generated block of that file (between its markers).
+  --update replaces the generated blocks "hardware-presets" (the presets'
+  deltas, read from configs/hw) and "hardware" (every table of the runs) of
+  that file (between their markers), each ending with its commit and presets.
 usage: scripts/make_beyond.py [--svg PLOT.svg] [--update docs/beyond.md] RUN_DIR [RUN_DIR ...] > tables.md
   Part II (section "cluster: the paper's future work"); --update replaces
   its generated blocks "cluster" (the orientation table and the verdicts)
@@ -307,11 +309,11 @@ def main():
             sys.exit(__doc__)
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         import beyond_hardware
-        text = beyond_hardware.report(args[1])
+        texts = beyond_hardware.blocks(args[1], ROOT)
         if update:
-            beyond_hardware.splice(update, text)
+            beyond_hardware.splice(update, texts)
         else:
-            sys.stdout.write(text)
+            sys.stdout.write(texts["hardware-presets"] + "\n" + texts["hardware"])
         return
     svg = update = None
     while len(args) >= 2 and args[0] in ("--svg", "--update"):
