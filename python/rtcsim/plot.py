@@ -311,56 +311,8 @@ def render(result, exposure=1.0, title=None):
     return fig
 
 
-def break_even(result, x_events, y_events, x_range=(1, 100), y_range=(1, 100), preset=None, cells=48,
-               title=None):
-    """Which method is cheapest when two groups of event costs change (log
-    axes, cell centres as the CLI's break_even maps; the other costs from
-    `preset`, per-ray model of the totals). Pale cells: a close call (the
-    runner-up within 10%)."""
-    from .results import event_index
-    x_events, y_events = [x_events] if isinstance(x_events, str) else x_events, \
-        [y_events] if isinstance(y_events, str) else y_events
-    p = result.preset_index(preset)
-    cost = np.array(result.costs[p].cycles)
-    xi, yi = [event_index(e) for e in x_events], [event_index(e) for e in y_events]
-    cost[xi + yi] = 0.0
-    centres = (np.arange(cells) + 0.5) / cells
-    xs = x_range[0] * (x_range[1] / x_range[0]) ** centres
-    ys = y_range[0] * (y_range[1] / y_range[0]) ** centres
-    names, cycles = [], []
-    for name, m in result.methods.items():
-        if m.runnable and m.priced[p].supported:
-            t = np.asarray(m.totals, dtype=float)
-            names.append(name)
-            cycles.append(t @ cost + ys[:, None] * t[yi].sum() + xs[None, :] * t[xi].sum())
-    cycles = np.array(cycles)  # (methods, y, x)
-    order = np.sort(cycles, axis=0)
-    winner = np.argmin(cycles, axis=0)
-    margin = order[1] / order[0] if len(names) > 1 else np.full(winner.shape, np.inf)
-    palette = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#F0E442", "#000000"]
-    rgb = np.array([colors.to_rgb(palette[i % len(palette)]) for i in range(len(names))])[winner]
-    rgb = np.where((margin < 1.1)[..., None], 0.55 * rgb + 0.45, rgb)
-    fig = Figure(figsize=(6.4, 5), layout="constrained")
-    ax = fig.add_subplot()
-    ax.imshow(rgb, origin="lower", extent=(*np.log10(x_range), *np.log10(y_range)), aspect="auto",
-              interpolation="nearest")
-    ax.xaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{10 ** v:g}"))
-    ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{10 ** v:g}"))
-    ax.set_xlabel(" = ".join(x_events) + " [cycles]")
-    ax.set_ylabel(" = ".join(y_events) + " [cycles]")
-    for i, name in enumerate(names):
-        ax.plot([], [], "s", color=palette[i % len(palette)], label=name)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1))
-    ax.set_title(title or f"{result.label}: fastest method (other costs: {result.cost_presets[p]})", fontsize=10)
-    return fig
-
-
-def break_even_maps(result):
-    """{name: Figure} for the config's break_even list (as the CLI's maps)."""
-    return {spec["name"]: break_even(result, spec["x"]["events"], spec["y"]["events"],
-                                     (spec["x"]["min"], spec["x"]["max"]), (spec["y"]["min"], spec["y"]["max"]),
-                                     spec["preset"], spec.get("cells", 48))
-            for spec in result.config.get("break_even", [])}
+# Break-even maps (with the calibration's band): rtcsim/plot_break_even.py.
+from .plot_break_even import break_even, break_even_cells, break_even_maps, in_doubt  # noqa: E402,F401
 
 
 # -- python3 -m rtcsim.plot ---------------------------------------------------------
