@@ -54,6 +54,19 @@ def commits_of(runs):
                              ("+dirty" if r.data.get("provenance", {}).get("git_dirty") else "") for r in runs}))
 
 
+def overrides_of(runs):
+    """The command line's --set overrides the runs were made with (provenance), as one text."""
+    sets = []
+    for r in runs:
+        line = r.data.get("provenance", {}).get("command_line", [])
+        for i, arg in enumerate(line):
+            value = line[i + 1] if arg == "--set" and i + 1 < len(line) else \
+                arg[len("--set="):] if arg.startswith("--set=") else None
+            if value is not None and value not in sets:
+                sets.append(value)
+    return " ".join(f"`--set {v}`" for v in sets)
+
+
 def stamp(runs, config, presets, what=None):
     """Where a table came from: the commits that made its runs, the config,
     the cost presets it shows and the memory preset(s). `what` replaces
@@ -66,7 +79,10 @@ def stamp(runs, config, presets, what=None):
     costs = (f"cost preset{'s' if len(presets) > 1 else ''} {shown}"
              + (f" ({', '.join(str(d) for d in sorted(draws))} draws for the intervals)" if draws else "")
              if presets else "no cost preset (memory only)")
-    what = what or f"{len(runs)} runs of `configs/runs/{config}` at commit {commits_of(runs)}"
+    if not what:
+        sets = overrides_of(runs)
+        what = f"{len(runs)} runs of `configs/runs/{config}`" + (f" ({sets})" if sets else "") + \
+            f" at commit {commits_of(runs)}"
     return (f"Made by `scripts/make_reproduction.py` from {what}; {costs}, "
             f"memory preset{'s' if len(memory) > 1 else ''} {', '.join(memory)}.")
 
@@ -251,7 +267,8 @@ def tight_table(hair, tight, preset):
                      f"{(f'{s:.2f}x' if s else 'n/a')} -> {(f'{st:.2f}x' if st else 'n/a')} |")
     lines.append("")
     lines.append(stamp(used + tight, "hair.json", [preset],
-                       what=f"{len(used)} runs of `configs/runs/hair.json` (runs/hair) at commit {commits_of(used)} and "
+                       what=f"{len(used)} runs of `configs/runs/hair.json` (runs/hair: {overrides_of(used) or 'as shipped'}) "
+                            f"at commit {commits_of(used)} and "
                             f"{len(tight)} of the same config with `\"obb\": \"tight\"` (runs/hair_tight, the command "
                             f"at the top) at commit {commits_of(tight)}"))
     return "\n".join(lines)
