@@ -64,8 +64,11 @@ def _draw(winner, margin, names, x_range, y_range, x_label, y_label, title, doub
                                    edgecolor="#333333", gid=HATCH_GID))
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
-    ax.xaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{10 ** v:g}"))
-    ax.yaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{10 ** v:g}"))
+    for axis, lo, hi in ((ax.xaxis, x0, x1), (ax.yaxis, y0, y1)):  # ticks at 1, 2, 5 x 10^k (log10 positions)
+        k = np.arange(np.floor(lo), np.ceil(hi) + 1)
+        at = np.log10(np.outer(10.0 ** k, [1, 2, 5]).ravel())
+        axis.set_major_locator(ticker.FixedLocator(at[(at >= lo - 1e-9) & (at <= hi + 1e-9)]))
+        axis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{10 ** v:.4g}"))
     ax.set_xlabel(x_label)
     ax.set_ylabel(y_label)
     for i, name in enumerate(names):

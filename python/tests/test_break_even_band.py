@@ -10,7 +10,7 @@ import pytest
 
 import rtcsim
 from rtcsim import plot
-from rtcsim.plot_break_even import HATCH_GID
+from rtcsim.plot_break_even import HATCH_GID, PALETTE
 
 from conftest import ROOT, TINY
 
@@ -72,7 +72,7 @@ def test_cells_map_hatches_the_cells_in_doubt(band_run):
     names = cells["methods"]
     for i, w in enumerate(cells["winner"]):
         iy, ix = divmod(i, cells["nx"])
-        full = np.array(__import__("matplotlib").colors.to_rgb(plot.plot_break_even.PALETTE[w]))
+        full = np.array(__import__("matplotlib").colors.to_rgb(PALETTE[w]))
         m = cells["margin"][i]
         assert np.allclose(rgb[iy, ix], 0.55 * full + 0.45 if m is not None and m < 1.1 else full), names[w]
     fig.savefig(out / "band.png")
