@@ -1,6 +1,7 @@
 """scripts/make_reproduction.py on small reproduction runs: the tables of
 docs/reproduction.md from the runs' reports, and its figures."""
 import os
+import re
 import subprocess
 import sys
 
@@ -33,7 +34,8 @@ def test_make_reproduction(simulate, tmp_path):
     # The calibration table is read from the shipped preset, and says so.
     assert "| `context_switch` | 200 | 100 |" in text and "from `configs/hw/turing-calibrated.json`" in text
     assert "| cells within +/-10 % |" in text
-    assert "runs of `configs/runs/fig3_bundles.json` at commit " in text  # every table says where it came from
+    # Every table says where it came from, with the overrides its runs were made with.
+    assert re.search(r"runs of `configs/runs/fig3_bundles.json` \(`--set workload.width=8` .*\) at commit ", text)
     for section in ("## hair", "## memory"):
         assert section in text
     # Every cell is the run's own speedup next to the paper's.
