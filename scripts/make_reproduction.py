@@ -262,7 +262,7 @@ def tight_table(hair, tight, preset):
             continue
         used.append(r)
         s, st = r.speedup("obb", preset), t.speedup("obb", preset)
-        lines.append(f"| {model_name(t)} | {kind_label(t)} | {r.area_ratio():.2f} -> {t.area_ratio():.2f} | "
+        lines.append(f"| {model_name(t)} | {kind_label(t)} | {r.area_ratio():.2f} -> {t.area_ratio(tight=True):.2f} | "
                      f"{r.is_per_ray('obb'):.3f} -> {t.is_per_ray('obb'):.3f} | "
                      f"{(f'{s:.2f}x' if s else 'n/a')} -> {(f'{st:.2f}x' if st else 'n/a')} |")
     lines.append("")
