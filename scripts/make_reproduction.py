@@ -295,7 +295,7 @@ def targets_table(curly, fig3, preset):
     by_model = {}
     for r in curly:
         by_model.setdefault(model_name(r), {})[kind_label(r)] = r
-    lines = ["| prediction | target (paper values) | predicted (runs) | |", "|---|---|---|---|"]
+    lines = ["| prediction | target (set from the paper, not a run) | predicted (runs) | |", "|---|---|---|---|"]
     for model, title in (("curly lock", "single curl"), ("curly head", "curly hair")):
         kinds = by_model.get(model, {})
         cells, errors = [], []
