@@ -33,6 +33,7 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples"))
@@ -472,7 +473,9 @@ def tilt_figure(runs, preset):
     ax = fig.axes[0]
     lines = {line.get_label(): line for line in ax.get_lines() if line.get_marker() == "o"}
     for i, (n, rad) in enumerate(CONFIGS):
-        line = next((v for k, v in lines.items() if f"scene.count={n}," in k + ","), None)
+        # The run's line of this N ("count=1000, radius=0.002"; older plots wrote "scene.count=..."),
+        # so the paper's dashed line takes its colour.
+        line = next((v for k, v in lines.items() if re.search(rf"(^|[ .])count={n},", k + ",")), None)
         ax.plot(list(PAPER), [PAPER[t][i] for t in PAPER], ls="--", marker="x",
                 color=line.get_color() if line else None, label=f"paper N={n}, r={rad}")
     ax.legend(fontsize=7, ncol=2)
