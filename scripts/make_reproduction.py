@@ -11,6 +11,7 @@ the tight-OBB sweep of docs/reproduction.md). Prints the Markdown tables, each
 a generated block of docs/reproduction.md:
   calibration  the shipped preset's fit (configs/hw/turing-calibrated.json: no runs needed)
   synthetic    the synthetic table against the paper (fig3/)
+  heatmaps     with --trace: the heat-map pictures' table, stamped with the trace's commit
   refit        fig3/calibrated_preset.json against the shipped preset (fig3/)
   table1       Table 1 on the curly stand-ins (curly/)
   targets      the predictions against their targets (curly/ and fig3/)
@@ -497,6 +498,15 @@ def trace_heatmaps(size, images):
                             title=f"{method}: cycles per pixel ({PRESET})\nN=1000, r=0.002, 45 deg, common scale")
         fig.savefig(f"{stem}_cycles_{method}.png", dpi=100)
     plot.ratio_map(result, "obb", PRESET).savefig(f"{stem}_ratio.png", dpi=100)
+    prov = result.data.get("provenance", {})
+    w = config["workload"]
+    return ("| ref | obb | ref / obb |\n|---|---|---|\n"
+            "| ![](images/fig3_n1000_r0.002_45deg_cycles_ref.png) | ![](images/fig3_n1000_r0.002_45deg_cycles_obb.png) "
+            "| ![](images/fig3_n1000_r0.002_45deg_ratio.png) |\n\n"
+            f"Traced by `scripts/make_reproduction.py --trace {size}` (the N = 1000, r = 0.002, 45 degree cell of "
+            f"`configs/runs/fig3_bundles.json` at {size} x {size}, {w.get('spp')} paths per pixel, "
+            f"{w.get('bounces')} bounces; obb over ref {result.speedup('obb', PRESET):.3f}x) at commit "
+            f"{prov.get('git_commit', 'unknown')}{'+dirty' if prov.get('git_dirty') else ''}; cost preset `{PRESET}`.")
 
 
 def splice(path, blocks):
@@ -571,10 +581,13 @@ def main():
     mem = load("memory")
     if mem:
         show("memory", "memory", memory_table(mem))
+    if args.trace:  # the heat maps (and their block) before the blocks are written
+        os.makedirs(args.images, exist_ok=True)
+        show("heatmaps", "Heat maps (re-traced)", trace_heatmaps(args.trace, args.images))
     if args.update:
         splice(args.update, blocks)
-        missing = sorted({"calibration", "synthetic", "refit", "hair", "scivis", "tight", "table1", "targets",
-                          "memory"} - set(blocks))
+        missing = sorted({"calibration", "synthetic", "refit", "heatmaps", "hair", "scivis", "tight", "table1",
+                          "targets", "memory"} - set(blocks))
         if missing:
             print(f"{args.update}: no runs for {', '.join(missing)}: those blocks left as they were", file=sys.stderr)
     os.makedirs(args.images, exist_ok=True)
@@ -583,8 +596,6 @@ def main():
             os.path.join(args.images, "speedup_vs_area_ratio.svg"))
     if fig3:
         tilt_figure(fig3, PRESET).savefig(os.path.join(args.images, "fig3_speedup_vs_tilt.svg"))
-    if args.trace:
-        trace_heatmaps(args.trace, args.images)
 
 
 if __name__ == "__main__":

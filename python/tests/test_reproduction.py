@@ -36,6 +36,8 @@ def test_make_reproduction(simulate, tmp_path):
     assert "| cells within +/-10 % |" in text
     # Every table says where it came from, with the overrides its runs were made with.
     assert re.search(r"runs of `configs/runs/fig3_bundles.json` \(`--set workload.width=8` .*\) at commit ", text)
+    # --trace: the heat maps' table, stamped with the trace's commit.
+    assert "Traced by `scripts/make_reproduction.py --trace 16`" in text and "at commit " in text
     for section in ("## hair", "## memory"):
         assert section in text
     # Every cell is the run's own speedup next to the paper's.
