@@ -496,8 +496,8 @@ def trace_heatmaps(size, images):
     for method in ("ref", "obb"):
         fig = plot.heatmaps(result, "cycles", [method], PRESET, scale_methods=["ref", "obb"],
                             title=f"{method}: cycles per pixel ({PRESET})\nN=1000, r=0.002, 45 deg, common scale")
-        fig.savefig(f"{stem}_cycles_{method}.png", dpi=100)
-    plot.ratio_map(result, "obb", PRESET).savefig(f"{stem}_ratio.png", dpi=100)
+        fig.savefig(f"{stem}_cycles_{method}.png", dpi=200)
+    plot.ratio_map(result, "obb", PRESET).savefig(f"{stem}_ratio.png", dpi=200)
     prov = result.data.get("provenance", {})
     w = config["workload"]
     return ("| ref | obb | ref / obb |\n|---|---|---|\n"
