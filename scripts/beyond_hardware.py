@@ -232,7 +232,7 @@ def obb_vs_ref_table(runs, directory, kinds=("capsule",)):
                 cells = json.load(f)
             row, row_doubt = _crossings(cells, "x", m["mark"]["y"])
             col, col_doubt = _crossings(cells, "y", m["mark"]["x"])
-            span = lambda d: "%.3g-%.3g" % d if d else "none"
+            span = lambda d: ("%.3g" % d[0] if "%.3g" % d[0] == "%.3g" % d[1] else "%.3g-%.3g" % d) if d else "none"
             lines.append("| %s | %s (hand-off %.3g, transform %.3g) | %s | %s | %s | %s |" % (
                 label(r), m["preset"], m["mark"]["x"], m["mark"]["y"], _crossing_text(row), span(row_doubt),
                 _crossing_text(col), span(col_doubt)))
@@ -284,7 +284,7 @@ def answers_table(runs, directory, hair=("capsule sintel", "link sintel"), bundl
             at = lambda parts, who: next(("~%.3g" % x for n, x in parts if n == who and x), None)
             frm = at(row, "obb") or ("any" if row[0][0] == "obb" and len(row) == 1 else "never")
             upto = at(col, "ref") or ("any" if col[0][0] == "obb" and len(col) == 1 else "none")
-            span = lambda d: " [%.3g-%.3g]" % d if d else ""
+            span = lambda d: (" [%.3g]" % d[0] if "%.3g" % d[0] == "%.3g" % d[1] else " [%.3g-%.3g]" % d) if d else ""
             stops.append("%s: from %s%s, up to %s%s" % (name, frm, span(rd), upto, span(cd)))
         lines.append("| %s | %s | %.1f MiB, %+.0f%% | %s | %s |" % (
             p, text, m, over, btext, "; ".join(stops) or "no obb_vs_ref map (see the all-method maps)"))
