@@ -35,7 +35,9 @@ def load_cells(cells):
 
 def in_doubt(cells):
     """(ny, nx) bool, row 0 the lowest y: cells with a winner whose 90 % band
-    of its lead reaches 1.0 (BreakEvenGrid::uncertain). All False without draws."""
+    of its lead reaches 1.0 (BreakEvenGrid::uncertain). All False without draws.
+    The file keeps 4 significant digits, so a band ending within 5e-5 above
+    1.0 counts as reaching it here and not in the CLI's picture."""
     cells = load_cells(cells)
     ny, nx = cells["ny"], cells["nx"]
     winner = np.asarray(cells["winner"]).reshape(ny, nx)
