@@ -12,6 +12,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -50,7 +52,7 @@ TEST_CASE("cost uncertainty: parsed, written back, and optional") {
     CHECK(m.uncertainty->free_count() == 2);
     CHECK(m.uncertainty->parameters[1].scale);
     CHECK(m.uncertainty->covariance[1][0] == 0.01);
-    CHECK(m.uncertainty->fitted_on["workload"] == "test");
+    CHECK(nlohmann::json::parse(m.uncertainty->fitted_on_json)["workload"] == "test");
     const std::string text = cost_model_to_json(m);
     CHECK(cost_model_to_json(parse_cost_model(text, "q.json")) == text);
     nlohmann::json plain = preset_json(kCov);
@@ -120,3 +122,5 @@ TEST_CASE("cost uncertainty: the 90 % interval contains the point estimate") {
     CHECK(interval_90(s, 0.5)[0] == 0.5);
     CHECK(interval_90({}, 3.0) == std::array<double, 2>{3.0, 3.0});
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -3,6 +3,8 @@
 #include "sim/hardware/cost_model.h"
 #include "sim/util/json_reader.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -144,7 +146,7 @@ CostUncertainty parse_cost_uncertainty(const JsonReader& r, const std::array<dou
     } catch (const std::invalid_argument& e) {
         r.fail("covariance/" + std::string(e.what()), "not positive semi-definite (a covariance must be)");
     }
-    if (r.has("fitted_on")) u.fitted_on = nlohmann::ordered_json::parse(r.child("fitted_on").json().dump());
+    if (r.has("fitted_on")) u.fitted_on_json = r.child("fitted_on").json().dump();
     return u;
 }
 
@@ -166,7 +168,7 @@ nlohmann::ordered_json cost_uncertainty_to_json(const CostUncertainty& u) {
     j["covariance"] = u.covariance;
     // The preset's top-level fitted_on describes the workload; this one is
     // written only when a caller filled it.
-    if (!u.fitted_on.empty()) j["fitted_on"] = u.fitted_on;
+    if (!u.fitted_on_json.empty()) j["fitted_on"] = nlohmann::ordered_json::parse(u.fitted_on_json);
     return j;
 }
 

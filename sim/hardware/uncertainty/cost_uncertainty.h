@@ -11,7 +11,9 @@
 
 #include "core/events.h"
 
-#include <nlohmann/json.hpp>
+// json_fwd, not json.hpp: every method includes this header (through
+// cost_model.h), and parsing json.hpp costs each of them about 2.5 CPU-s.
+#include <nlohmann/json_fwd.hpp>
 
 #include <array>
 #include <cstdint>
@@ -39,7 +41,9 @@ struct CostUncertainty {
     // fit's Jacobian is value-scaled, so log space is where it is Gaussian to
     // first order, and a draw exp(z) x value stays positive.
     std::vector<std::vector<double>> covariance;
-    nlohmann::ordered_json fitted_on = nlohmann::ordered_json::object();  // the workload the fit saw
+    // The workload the fit saw, as JSON text (empty: not given); text so that
+    // this struct needs no complete JSON type.
+    std::string fitted_on_json;
 
     [[nodiscard]] std::size_t free_count() const;
 };
