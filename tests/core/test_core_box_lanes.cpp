@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <limits>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -72,3 +74,5 @@ TEST_CASE("box lanes: zeros of either sign, infinities, NaN and empty boxes agre
     CHECK(cmp.compared == 3 * 11 * 11 * 4 * 2 * 3);
     CHECK(cmp.hits > 0);
 }
+
+}  // namespace RTCSIM_TEST_FILE

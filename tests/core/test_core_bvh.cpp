@@ -9,6 +9,8 @@
 #include <limits>
 #include <stdexcept>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -213,3 +215,5 @@ TEST_CASE("bvh: non-finite or inverted boxes are rejected with the primitive ind
     bad.width = 3;
     CHECK_THROWS_AS(static_cast<void>(build_bvh(std::vector<Aabb>{}, bad)), std::invalid_argument);
 }
+
+}  // namespace RTCSIM_TEST_FILE

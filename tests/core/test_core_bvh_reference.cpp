@@ -15,6 +15,8 @@
 #include <cstring>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -267,3 +269,5 @@ TEST_CASE("bvh build: identical to the reference builder on degenerate input and
     check_same({}, o);
     check_same({Aabb{Vec3{0.0f}, Vec3{1.0f}}}, o);
 }
+
+}  // namespace RTCSIM_TEST_FILE

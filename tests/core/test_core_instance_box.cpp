@@ -17,6 +17,8 @@
 #include <limits>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -127,3 +129,5 @@ TEST_CASE("instance box: zeros of either sign, axis-aligned frames, infinities a
     CHECK(cmp.compared == 4 * 11 * 11 * 4 * 3 * 2);
     CHECK(cmp.hits > 0);
 }
+
+}  // namespace RTCSIM_TEST_FILE

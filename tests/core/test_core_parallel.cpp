@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -157,3 +159,5 @@ TEST_CASE("bvh build: the same tree for 1, 2 and 4 threads, clusters of tiny nod
         check_thread_independent(boxes, o);
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

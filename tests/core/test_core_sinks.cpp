@@ -8,6 +8,8 @@
 
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 
@@ -86,3 +88,5 @@ TEST_CASE("events: events_of_unit lists every event of a unit once, in order, an
     CHECK(split == std::vector<int>(kEventCount, 1));
     CHECK(events_of_unit<EventUnit::Shader>()[0] == static_cast<std::uint8_t>(Event::Ray));
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -8,6 +8,8 @@
 #include <limits>
 #include <set>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 using rtc::test::Tri;
@@ -163,3 +165,5 @@ TEST_CASE("traverse: empty tree, degenerate rays and flat boxes") {
         CHECK(leaves == 0);
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

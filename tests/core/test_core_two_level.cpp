@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::Rng;
 using rtc::test::Tri;
@@ -271,3 +273,5 @@ TEST_CASE("two-level: instances made on demand build what the same instances in 
         return make_instance(i == 1 ? 5 : 0, 0, Affine{});
     }, o), "instance 1: no BLAS 5", std::invalid_argument);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -177,3 +179,5 @@ TEST_CASE("warp execution: ray lists run W consecutive rays per wave") {
     CHECK(r.warp[0].waves == (cam.rays.size() + 31) / 32);
     CHECK(r.warp[0].lanes == cam.rays.size());
 }
+
+}  // namespace RTCSIM_TEST_FILE

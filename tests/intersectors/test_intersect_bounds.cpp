@@ -13,6 +13,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -173,3 +175,5 @@ TEST_CASE("intersect bounds: degenerate primitives give invertible, finite OBBs"
     CHECK(oriented_bounds(point).contains(p, 0.0f));
     CHECK(bounds(Capsule{p, p, 1}).contains(p + Vec3(1, 0, 0)));
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("intersect link: hand-computed table") {
@@ -130,3 +132,5 @@ TEST_CASE("intersect link: accuracy, capsule agreement, t independent of tmax") 
     CHECK(capsule_pairs - same_as_capsule <= capsule_pairs / 10000);
     CHECK(tmax_checked > 1000);
 }
+
+}  // namespace RTCSIM_TEST_FILE

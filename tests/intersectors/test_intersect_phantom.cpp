@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -186,3 +188,5 @@ TEST_CASE("intersect phantom: OBBs of nearly straight axis-aligned curves stay i
         }
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -17,6 +17,8 @@
 
 #include <cstdio>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -297,3 +299,5 @@ TEST_CASE("phantom paper program: against the link chain, highly curved curves")
     MESSAGE(describe("curl 1.0", s));
     check_bounds(s, 0.90, 4e-2, 1.5e-2);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -10,6 +10,8 @@
 #include <bit>
 #include <cstdint>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -285,3 +287,5 @@ TEST_CASE("intersect capsule: the cheap rejects on AVX2 lanes are the scalar one
     CHECK(rejected > 2000);  // and the rejects
 }
 #endif
+
+}  // namespace RTCSIM_TEST_FILE

@@ -6,6 +6,8 @@
 
 #include <random>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("intersect triangle: hand-computed table") {
@@ -67,3 +69,5 @@ TEST_CASE("intersect triangle: watertight along a shared edge, t independent of 
     }
     CHECK(hits > 10000);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -14,6 +14,8 @@
 #include <cmath>
 #include <random>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -68,3 +70,5 @@ TEST_CASE("phantom programs: the answer does not depend on tmax, paper program")
 TEST_CASE("phantom programs: the answer does not depend on tmax, bracketed program") {
     check_tmax_independent({true, 24, PhantomProgram::Bracketed, 40});
 }
+
+}  // namespace RTCSIM_TEST_FILE

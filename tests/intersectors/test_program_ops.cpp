@@ -10,6 +10,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -131,3 +133,5 @@ TEST_CASE("a sink that does not count pays nothing for operations") {
     const Capsule cap{{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 0.01f};
     CHECK(intersect(cap, ray_from({0.5f, 0.0f, 1.0f}, {0.0f, 0.0f, -1.0f}), null).has_value());
 }
+
+}  // namespace RTCSIM_TEST_FILE

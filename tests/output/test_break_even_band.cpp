@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -105,3 +107,5 @@ TEST_CASE("break-even band: without draws no cell is in doubt") {
     for (std::size_t i = 0; i < g.winner.size(); ++i) CHECK_FALSE(g.uncertain(i));
     CHECK(break_even_json(r)[0]["uncertain_share"].is_null());
 }
+
+}  // namespace RTCSIM_TEST_FILE

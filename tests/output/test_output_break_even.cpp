@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("break-even map: winners, margins and empty cells are drawn") {
@@ -91,3 +93,5 @@ TEST_CASE("break-even map: a scale axis and a method subset are read, unknown me
     CHECK_THROWS_WITH_AS((void)parse_run_config(c, "x.json"),
                          doctest::Contains("x.json: /break_even/0/methods/1: \"lss\" is not one of the run's methods"), InputError);
 }
+
+}  // namespace RTCSIM_TEST_FILE

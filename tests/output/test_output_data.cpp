@@ -16,6 +16,8 @@
 #include <map>
 #include <sstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -241,3 +243,5 @@ TEST_CASE("output data: a method that cannot run gives rows with empty numbers a
     CHECK(na == 1);
     CHECK(rows[1][col("primitive_count")] == "60");  // no gap in this column: an integer
 }
+
+}  // namespace RTCSIM_TEST_FILE

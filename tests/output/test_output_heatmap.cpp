@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace {
 
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -128,3 +130,5 @@ TEST_CASE("output heatmap: ratio map is white at 1, red above, blue below, grey 
     CHECK(rtc::ratio_ticks(1000.0).size() <= 9);
     CHECK_THROWS_AS((void)rtc::ratio_field(ref, rtc::ScalarField{2, 2, {1, 1, 1, 1}}), std::invalid_argument);
 }
+
+}  // namespace RTCSIM_TEST_FILE

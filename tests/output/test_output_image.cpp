@@ -17,6 +17,8 @@
 #include <stb_image.h>
 #pragma GCC diagnostic pop
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace {
 
 std::string temp_path(const std::string& name) {
@@ -140,3 +142,5 @@ TEST_CASE("output text: 2x scale quadruples the ink, right alignment ends at x")
     rtc::draw_text(q, 0, 0, "\xC3\xA9", {{0, 0, 0}, 1});
     CHECK(ink_count(q, white) > 0);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace {
 
 // Every element opened is closed in order; returns false on any mismatch.
@@ -126,3 +128,5 @@ TEST_CASE("output plot: an interval is a shaded band, or error bars on categorie
     p.series[0].y_low.pop_back();
     CHECK_THROWS_AS((void)rtc::line_plot_svg(p), std::invalid_argument);
 }
+
+}  // namespace RTCSIM_TEST_FILE

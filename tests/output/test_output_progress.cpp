@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace {
 
 std::string read_all(std::FILE* f) {
@@ -86,3 +88,5 @@ TEST_CASE("output progress: concurrent advance counts exactly") {
     CHECK(read_all(f).find("40,000/40,000 done in") != std::string::npos);
     std::fclose(f);
 }
+
+}  // namespace RTCSIM_TEST_FILE

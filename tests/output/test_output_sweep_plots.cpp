@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <set>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -123,3 +125,5 @@ TEST_CASE("output heatmap: a clipped scale is labelled at both ends and says whe
     const HeatmapScale unclipped = common_scale({&f}, 100.0);
     CHECK(!unclipped.clipped_high());
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace {
 
 std::vector<std::string> lines_of(const std::string& s) {
@@ -108,3 +110,5 @@ TEST_CASE("output ticks: nice linear and log ticks with labels") {
     CHECK(rtc::log_ticks(0.0, 10.0).empty());
     CHECK(rtc::linear_ticks(2.0, 1.0).empty());
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -226,3 +228,5 @@ TEST_CASE("scene bad input: OBJ") {
     expect_input_error(load_obj, kBad / "obj_nan.obj", "line 2", "non-finite");
     expect_input_error(load_obj, kBad / "obj_single_point_line.obj", "polyline 1", "1 point");
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -9,6 +9,8 @@
 
 #include <filesystem>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using nlohmann::json;
 
@@ -144,3 +146,5 @@ TEST_CASE("scene config: errors name the config file and the JSON path") {
         error_of({{"type", "file"}, {"curves", {{"path", "hair/fur_synthetic.hair"}, {"format", "trk"}}}});
     CHECK(wrong_format.find("fur_synthetic.hair: byte 0: bad magic") != std::string::npos);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -106,3 +108,5 @@ TEST_CASE("scene convert: bad subdivision factors are rejected") {
                          doctest::Contains("only to phantom"), InputError);
     CHECK(primitive_count(to_primitives(s, PrimitiveKind::Phantom, 8)) == 16);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -12,6 +12,8 @@
 
 #include <filesystem>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -81,3 +83,5 @@ TEST_CASE("scene stats: counts, bounds, means") {
     CHECK(b.mean_segment_length == doctest::Approx(1.0));
     CHECK(b.mean_length_over_radius == doctest::Approx(100.0));
 }
+
+}  // namespace RTCSIM_TEST_FILE

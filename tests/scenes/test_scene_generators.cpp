@@ -11,6 +11,8 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("scene bundle: lengths, radii, axes inside the bundle, tilt") {
@@ -222,3 +224,5 @@ TEST_CASE("scene follow hairs: copies around each guide, fanning out") {
     }
     CHECK(add_follow_hairs(g, {}).points == g.points);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -148,3 +150,5 @@ TEST_CASE("hostile input: a directory given as a curve or mesh file") {
     check_names(error_of([](const fs::path& f) { (void)load_trk(f); }, "/dev/null"), "/dev/null", "",
                 "not a regular file");
 }
+
+}  // namespace RTCSIM_TEST_FILE

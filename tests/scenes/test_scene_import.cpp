@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::bounds_of;
 using rtc::test::kImportFixtures;
@@ -237,3 +239,5 @@ TEST_CASE("mesh import: binary little-endian PLY, and a body shorter than its he
               .find("binary_index.ply: byte " + std::to_string(list_at + 8) + ": face 0 refers to vertex 3, the file has 3") !=
           std::string::npos);
 }
+
+}  // namespace RTCSIM_TEST_FILE

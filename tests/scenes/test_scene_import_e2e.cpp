@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -66,3 +68,5 @@ TEST_CASE("scene import e2e: simulate runs a pbrt-v4 scene and a glTF mesh") {
     CHECK(b["scene"]["triangles"] == 2);
     CHECK(b["scene"]["notes"].size() == 3);  // the pbrt curves file's
 }
+
+}  // namespace RTCSIM_TEST_FILE

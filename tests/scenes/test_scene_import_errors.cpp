@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using rtc::test::error_of;
 using rtc::test::kImportFixtures;
@@ -215,3 +217,5 @@ TEST_CASE("import: inputs the fuzzers found end as a mesh or an InputError") {
     expect(pbrt_error("\nInclude \"" + std::string(5000, 'x') + "\"\n", "long_name.pbrt"), "long_name.pbrt: line 2",
            "no such file");
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -112,3 +114,5 @@ TEST_CASE("scene loaders: OBJ fixture, quads fanned and polylines") {
     const LoadedCurves lines = load_curves(kFixtures / "obj/quad_and_line.obj");
     CHECK(lines.strands.segment_count() == 2);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -11,6 +11,8 @@
 #include <set>
 #include <string>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -114,3 +116,23 @@ TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed
     }
     CHECK(files > 0);
 }
+
+TEST_CASE("architecture: every test file keeps its code in its own namespace (the unity batches)") {
+    // tests/CMakeLists.txt compiles the test files in batches of 8; two
+    // files' helpers of the same name only stay apart inside
+    // `namespace RTCSIM_TEST_FILE`, which the build makes unique per file.
+    int files = 0;
+    for (const auto& f : fs::recursive_directory_iterator(kRoot / "tests")) {
+        const std::string name = f.path().filename().string();
+        if (!f.is_regular_file() || name.rfind("test_", 0) != 0 || f.path().extension() != ".cpp") continue;
+        ++files;
+        std::ifstream in(f.path());
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        CAPTURE(name);
+        CHECK(text.find("\nnamespace RTCSIM_TEST_FILE {") != std::string::npos);
+        CHECK(text.find("}  // namespace RTCSIM_TEST_FILE") != std::string::npos);
+    }
+    CHECK(files > 50);
+}
+
+}  // namespace RTCSIM_TEST_FILE

@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("area_stats: the same sums on 1, 2 and 3 threads, and the serial sum's to rounding") {
@@ -42,3 +44,5 @@ TEST_CASE("area_stats: the same sums on 1, 2 and 3 threads, and the serial sum's
     CHECK(one.aabb > 0.0);
     CHECK(area_stats(PrimitiveArray{std::vector<Capsule>{}}, 2).aabb == 0.0);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -313,3 +315,5 @@ TEST_CASE("calibrate: the fitted preset carries the covariance, and loads back")
     runs.resize(3);
     CHECK_FALSE(calibrate(runs, guess_model(), three_parameters()).model.uncertainty);
 }
+
+}  // namespace RTCSIM_TEST_FILE

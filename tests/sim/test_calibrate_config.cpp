@@ -6,6 +6,8 @@
 
 #include <string>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using nlohmann::json;
 
@@ -136,3 +138,5 @@ TEST_CASE("calibrate config: errors name the file and JSON path") {
     CHECK(error_of(block(params + "," + targets + R"(, "max_iterations": 0)")) ==
           "runs/x.json: /calibrate/max_iterations: expected an integer in [1, 100000], got 0");
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -10,6 +10,8 @@
 #include <map>
 #include <sstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -70,3 +72,5 @@ TEST_CASE("cli: every example in --help runs") {
         CHECK(fs::exists(out / (shard ? "shard.json" : "summary.csv")));
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

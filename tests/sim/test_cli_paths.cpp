@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -274,3 +276,5 @@ TEST_CASE("sweep: points that differ only in presets are re-priced, not traced, 
     REQUIRE(simulate(single) == 0);
     CHECK(comparable(report_of(point3)) == comparable(report_of(dir / "single")));
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -20,6 +20,8 @@
 
 #include <filesystem>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -242,3 +244,5 @@ TEST_CASE("hardware features: a preset lists only known ones, and every method's
             CHECK(std::find(std::begin(kHardwareFeatures), std::end(kHardwareFeatures), need) != std::end(kHardwareFeatures));
         }
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -12,6 +12,8 @@
 
 #include <filesystem>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -121,3 +123,5 @@ TEST_CASE("intervals: draws 0 turns them off and says so") {
     CHECK(r.one.no_interval_reason(0) == "uncertainty.draws is 0: no interval");
     CHECK(report_json(r.one)["speedup_interval_over_ref"]["obb"].empty());
 }
+
+}  // namespace RTCSIM_TEST_FILE

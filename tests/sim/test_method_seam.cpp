@@ -12,6 +12,8 @@
 
 #include <filesystem>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -115,3 +117,5 @@ TEST_CASE("method seam: a preset without a feature a method needs prices it n/a"
     CHECK(m.missing_feature({"custom_primitives", "instance_transforms"}) == "instance_transforms");
     CHECK(find_method("obb")->info.needs.size() == 2);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <bit>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using namespace rtc::test;
 
@@ -302,3 +304,5 @@ TEST_CASE("methods: cluster frames follow the primitives, orientation groups sta
     CHECK(calls[3] < calls[0] / 2);
     CHECK(transforms[3] * 4 < transforms[2]);
 }
+
+}  // namespace RTCSIM_TEST_FILE

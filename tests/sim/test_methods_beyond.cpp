@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <set>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using namespace rtc::test;
 
@@ -185,3 +187,5 @@ TEST_CASE("beyond: every hardware preset loads with a source per event and says 
     for (const char* m : {"ref", "obb", "leaf-obb", "split", "lss", "obb-nodes", "obb-quantized"})
         CHECK(runnable.count(m) == 1);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -8,6 +8,8 @@
 #include <bit>
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using namespace rtc::test;
 
@@ -125,3 +127,5 @@ TEST_CASE("methods: 1e5 from the origin every method still returns ref's hit for
         }
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

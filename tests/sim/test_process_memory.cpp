@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -129,3 +131,5 @@ TEST_CASE("huge pages: auto decides once, by the probe, and says what it measure
     CHECK((on || summary.rfind("auto: off", 0) == 0));
     CHECK(advised(m.at(0)) == on);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -19,6 +19,8 @@
 #include <map>
 #include <set>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -308,3 +310,5 @@ TEST_CASE("shard merge: checks what it merges (frame identities, every shard's p
     CHECK(e.find("is inside the shard directory " + s0.string()) != std::string::npos);
     CHECK(merge_error({s0.string(), s1.string(), "--out", fresh("id_out").string()}) == "(no error)");
 }
+
+}  // namespace RTCSIM_TEST_FILE

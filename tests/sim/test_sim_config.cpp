@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using nlohmann::json;
 
@@ -125,3 +127,5 @@ TEST_CASE("memory model: presets and pricing") {
     CHECK(price_memory(c, optix, PrimitiveKind::Capsule, 1000, 0, 0).blas_headers == 1920.0);
     CHECK(m.total() == doctest::Approx(m.acceleration() + m.common));
 }
+
+}  // namespace RTCSIM_TEST_FILE

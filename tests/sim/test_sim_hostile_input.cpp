@@ -17,6 +17,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -147,3 +149,5 @@ TEST_CASE("hostile config: a --set that is not UTF-8 (found by fuzz_config)") {
     check_starts(error_of(kTiny, {"\xff=1"}), kTiny + ": --set: ", "UTF-8");
     check_starts(error_of(kTiny, {"name=\xfe\xff"}), kTiny + ": --set: ", "UTF-8");
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 namespace fs = std::filesystem;
 
@@ -178,3 +180,5 @@ TEST_CASE("simulate e2e: bad input fails with one line naming the file and JSON 
     std::ofstream(blocker) << "x";
     CHECK(error_of(kTiny, {}, blocker + "/sub").find(blocker + "/sub: cannot create output directory") == 0);
 }
+
+}  // namespace RTCSIM_TEST_FILE

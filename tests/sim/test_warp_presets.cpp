@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -99,3 +101,5 @@ TEST_CASE("resolution: a run more than 4x off the preset's fitted pixel count is
     CHECK(again.fitted_on.pixels() == 64u * 32u);
     CHECK(again.fitted_on.config == "x.json");
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -59,3 +61,5 @@ TEST_CASE("work estimate: the shipped 20 M fur sweep fits 16 GiB, and size 2 is 
                                            "exceed --max-memory 16 GiB"),
                          InputError);
 }
+
+}  // namespace RTCSIM_TEST_FILE

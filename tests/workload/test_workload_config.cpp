@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <string>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -147,3 +149,5 @@ TEST_CASE("workload config: errors name the file and JSON path") {
         CHECK(e.rfind(c.expect, 0) == 0);
     }
 }
+
+}  // namespace RTCSIM_TEST_FILE

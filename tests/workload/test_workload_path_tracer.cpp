@@ -8,6 +8,8 @@
 #include <cstring>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -192,3 +194,5 @@ TEST_CASE("workload path tracer: primary shading and russian roulette") {
     CHECK(total < opt.spp * (1 + opt.bounces));
     CHECK(total == total_again);
 }
+
+}  // namespace RTCSIM_TEST_FILE

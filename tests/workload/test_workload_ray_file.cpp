@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 namespace {
@@ -183,3 +185,5 @@ TEST_CASE("workload hit file: round trip and validation") {
     CHECK_THROWS_WITH_AS((void)read_hit_file(path),
                          doctest::Contains("not a multiple of 12"), InputError);
 }
+
+}  // namespace RTCSIM_TEST_FILE

@@ -15,6 +15,8 @@
 #include <random>
 #include <set>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 
 TEST_CASE("workload rng: deterministic, distinct per counter, roughly uniform") {
@@ -207,3 +209,5 @@ TEST_CASE("workload camera: auto_frame keeps every box corner in the image") {
     bad.target = bad.position;
     CHECK_THROWS_AS((void)camera_frame(bad), InputError);
 }
+
+}  // namespace RTCSIM_TEST_FILE
