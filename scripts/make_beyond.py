@@ -11,7 +11,8 @@ usage: scripts/make_beyond.py [--svg PLOT.svg] [--update docs/beyond.md] RUN_DIR
   Part II (section "cluster: the paper's future work"); --update replaces
   its generated blocks "cluster" (the orientation table and the verdicts)
   and "cluster-full" (every row), each ending with the commit and presets
-  of its runs.
+  of its runs, and "memory-records" (each memory preset's instance and BLAS
+  record, read from configs/hw, with the commit that last changed them).
 Each RUN_DIR is the output of
   build/simulate configs/runs/cluster_sweep.json --out RUN_DIR
 (or configs/runs/cluster_fur20m.json). Memory is repriced from the reported
@@ -40,6 +41,28 @@ def load_presets():
         out[name] = {k: v["value"] for k, v in j["bytes"].items()}
         out[name]["instance_includes_tlas_nodes"] = j.get("instance_includes_tlas_nodes", {}).get("value", False)
     return out
+
+
+def memory_records_block():
+    """The per-instance and per-BLAS bytes of every memory preset with the BLAS record's source, read from
+    configs/hw/memory-*.json, stamped with the commit that last changed them."""
+    import subprocess
+    files = ["configs/hw/%s.json" % n for n in PRESETS]
+    try:
+        commit = subprocess.run(["git", "log", "-1", "--format=%h", "--"] + files, cwd=ROOT, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--"] + files, cwd=ROOT, capture_output=True,
+                               text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        commit, dirty = "unknown", ""
+    lines = ["| preset | instance | BLAS record | source of the BLAS record |", "|---|---|---|---|"]
+    for name, path in zip(PRESETS, files):
+        with open(os.path.join(ROOT, path)) as f:
+            b = json.load(f)["bytes"]
+        lines.append("| `%s` | %d B | %d B | %s |" % (name, b["instance"]["value"], b["blas"]["value"],
+                                                    b["blas"]["source"].replace("|", "/")))
+    return "\n".join(lines) + "\n\nMade by `scripts/make_beyond.py` from %s, as last changed at commit %s%s." % (
+        ", ".join("`%s`" % f for f in files), commit or "uncommitted", " (+ uncommitted changes)" if dirty else "")
 
 
 def reports(directory):
@@ -338,7 +361,8 @@ def main():
                                      "over `ref`'s under the OptiX 7 / DXR / OptixInstance-record presets):", "",
                                      orientation, "", bar, "", verdicts(rs)]),
               "cluster-full": "\n".join(["<details><summary>every strategy and size (%d runs)</summary>" % len(rs), "",
-                                          table(rs), "", stamp, "", "</details>"])}
+                                          table(rs), "", stamp, "", "</details>"]),
+              "memory-records": memory_records_block()}
     print(blocks["cluster"])
     print()
     print(blocks["cluster-full"])

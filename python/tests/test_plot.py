@@ -290,3 +290,17 @@ def test_pareto_points_are_the_tables_and_labels_do_not_overlap(tmp_path):
     for (cx, cy), r in zip(circles, sorted(rs, key=lambda r: (r["scene"], r["strategy"]))):
         at = [k for (px, py), k in named.items() if abs(px - cx) <= 1 and abs(py - cy) <= 1]  # whole pixels
         assert any(r["size"] in k for k in at), (r["scene"], r["strategy"], r["size"])
+
+
+def test_the_memory_records_table_is_the_presets():
+    """docs/beyond.md's memory-records block is what make_beyond.py makes of
+    configs/hw/memory-*.json now: a changed preset without a regenerated
+    table fails here (rerun: scripts/make_beyond.py --update docs/beyond.md
+    RUN_DIR)."""
+    mb = make_beyond()
+    block = mb.memory_records_block()
+    with open(os.path.join(ROOT, "configs", "hw", "memory-dxr.json")) as f:
+        dxr = __import__("json").load(f)["bytes"]
+    assert "| `memory-dxr` | %d B | %d B |" % (dxr["instance"]["value"], dxr["blas"]["value"]) in block
+    with open(os.path.join(ROOT, "docs", "beyond.md")) as f:
+        assert block in f.read()
