@@ -49,7 +49,7 @@ struct Shared {
     // places every reference by the very bins that were counted.
     std::unique_ptr<std::uint32_t[]> ref_bins;
     BinaryNodes nodes;
-    std::vector<std::uint32_t>& prim_ids;
+    UninitializedVector<std::uint32_t>& prim_ids;
 };
 
 // A reference's three bins (0 .. 63, lane 3 is 0) as bytes 0, 1 and 2.
@@ -382,7 +382,7 @@ std::pair<std::uint32_t, std::size_t> build_binary(Shared& s, const Bounds& root
 }  // namespace
 
 BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& options, unsigned threads,
-                             std::vector<std::uint32_t>& prim_ids) {
+                             UninitializedVector<std::uint32_t>& prim_ids) {
     const std::size_t n = boxes.size();
     Shared s{options, std::clamp(options.bins, 2, kMaxBins), {}, {}, {}, prim_ids};
     s.refs[0] = std::make_unique_for_overwrite<Ref[]>(n);

@@ -41,6 +41,6 @@ struct BinaryTree {
 // primitive. Empty input gives an empty tree.
 [[nodiscard]] BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& options,
                                            unsigned threads,
-                                           std::vector<std::uint32_t>& prim_ids);
+                                           UninitializedVector<std::uint32_t>& prim_ids);
 
 }  // namespace rtc::bvh_detail

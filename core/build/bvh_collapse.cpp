@@ -68,7 +68,7 @@ BvhEntry entry_of(const BinaryNode& b) {
 // known), or nowhere (counting a subtree's entries).
 struct Append {
     static constexpr bool kWrites = true;
-    std::vector<BvhEntry>& v;
+    UninitializedVector<BvhEntry>& v;
     std::uint32_t take(int k) {
         const auto first = static_cast<std::uint32_t>(v.size());
         v.resize(first + k);

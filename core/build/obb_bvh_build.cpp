@@ -150,7 +150,7 @@ public:
             out_.bvh.root.first = b.first;
             out_.bvh.root.count = BvhEntry::kInnerBit | b.count;
         }
-        out_.bvh.prim_ids = ids_;
+        out_.bvh.prim_ids.assign(ids_.begin(), ids_.end());
         return std::move(out_);
     }
 

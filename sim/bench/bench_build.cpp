@@ -3,6 +3,12 @@
 // its node count and SAH cost, so that a faster builder can be checked to
 // give the same trees. Usage:
 //   build/bench_build [--scale S] [--repeat R] [--threads T] [--cases a,b] [--fresh-memory 1]
+//                     [--cluster-size K]
+// The case `fur` times the cluster method's orientation grouping instead
+// (sim/methods/common/cluster_groups.cpp, clusters of K, default 256) on the
+// straight fur of configs/runs/cluster_fur20m.json at S x 1 M segments (the
+// 20 M fur is --scale 20) and prints a hash of the groups: the same hash is
+// the same clusters, members in the same order.
 // S multiplies every scene's primitive count (default 1: about 1 M each);
 // wall time is the best of R builds, M prims/s per thread from it; the
 // CPU-time rate (all threads' CPU time over R builds) drifts less with load.
@@ -20,6 +26,7 @@
 #include "scenes/generators/hair_gen.h"
 #include "scenes/generators/random.h"
 #include "scenes/generators/sphere_mesh.h"
+#include "sim/methods/common/cluster_groups.h"
 #include "sim/util/process_memory.h"
 
 #include <algorithm>
@@ -56,6 +63,45 @@ std::vector<Aabb> capsule_boxes(const Strands& s) {
     boxes.reserve(prims.size());
     for (const Capsule& c : prims) boxes.push_back(bounds(c));
     return boxes;
+}
+
+// The fur of configs/runs/cluster_fur20m.json (20 M segments at scale 20):
+// straight strands of 4 segments on a unit sphere.
+std::vector<Capsule> fur_capsules(double scale) {
+    HairDesc d;
+    d.style = HairStyle::Straight;
+    d.strands = static_cast<std::uint32_t>(std::max(1.0, 250000.0 * scale));
+    d.points_per_strand = 5;
+    d.length = 0.15f;
+    d.radius = 0.0008f;
+    d.tip_radius = 0.0002f;
+    d.seed = 3;
+    return std::get<std::vector<Capsule>>(to_primitives(make_hair(d).strands, PrimitiveKind::Capsule));
+}
+
+std::uint64_t groups_hash(const Clusters& c) {
+    const std::uint64_t h = fnv(1469598103934665603ull, c.first.data(), c.first.size() * sizeof(std::uint32_t));
+    return fnv(h, c.members.data(), c.members.size() * sizeof(std::uint32_t));
+}
+
+// The orientation grouping alone: best wall time of `repeat`, CPU time of all.
+void time_grouping(double scale, int repeat, int threads, int size) {
+    const std::vector<Capsule> caps = fur_capsules(scale);
+    double best = 1e30, cpu = 0.0;
+    Clusters c;
+    for (int r = 0; r < repeat; ++r) {
+        const std::clock_t c0 = std::clock();
+        const auto t0 = std::chrono::steady_clock::now();
+        c = group_orientation(std::span<const Capsule>(caps), size, static_cast<unsigned>(threads));
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    }
+    std::printf("%-10s %9zu %9zu %12s %016llx %9.4f %12.3f %12.3f  (orientation groups of %d; clusters in the "
+                "nodes column; CPU s per grouping %.3f)\n",
+                "fur", caps.size(), c.count(), "-", static_cast<unsigned long long>(groups_hash(c)), best,
+                static_cast<double>(caps.size()) / best / 1e6 / threads,
+                static_cast<double>(caps.size()) * repeat / cpu / 1e6, size, cpu / repeat);
+    std::fflush(stdout);
 }
 
 std::vector<Aabb> make_case(const std::string& name, double scale) {
@@ -96,24 +142,40 @@ std::vector<Aabb> make_case(const std::string& name, double scale) {
             boxes.push_back(bounds(Triangle{m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]}));
         return boxes;
     }
-    std::fprintf(stderr, "bench_build: unknown case '%s' (bundle, hair, random, triangles)\n", name.c_str());
+    std::fprintf(stderr, "bench_build: unknown case '%s' (bundle, hair, random, triangles, fur)\n", name.c_str());
     std::exit(2);
 }
+
+constexpr const char* kUsage =
+    "bench_build: times the BVH builder alone (core/build/) and prints each tree's hash\n"
+    "  --cases a,b          bundle, hair, random, triangles (capsule boxes but triangles), and fur:\n"
+    "                       the cluster method's orientation grouping of the fur of\n"
+    "                       configs/runs/cluster_fur20m.json (default: the four builder cases)\n"
+    "  --scale S            primitives x S million (default 1; the 20 M fur is fur at --scale 20)\n"
+    "  --repeat R           builds per case; wall time is the best, CPU time over all (default 5)\n"
+    "  --threads T          threads per build (default 1)\n"
+    "  --cluster-size K     fur: primitives per cluster (default 256)\n"
+    "  --fresh-memory 1     glibc's default heap: fresh pages for every build\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
     double scale = 1.0;
-    int repeat = 5, threads = 1;
+    int repeat = 5, threads = 1, cluster_size = 256;
     bool fresh_memory = false;
     std::string cases = "bundle,hair,random,triangles";
     for (int i = 1; i < argc; i += 2) {
         const std::string a = argv[i];
+        if (a == "--help" || a == "-h") {
+            std::printf("%s", kUsage);
+            return 0;
+        }
         if (i + 1 == argc) { std::fprintf(stderr, "bench_build: %s needs a value\n", a.c_str()); return 2; }
         if (a == "--scale") scale = std::atof(argv[i + 1]);
         else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--threads") threads = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--cases") cases = argv[i + 1];
+        else if (a == "--cluster-size") cluster_size = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--fresh-memory") fresh_memory = std::atoi(argv[i + 1]) != 0;
         else { std::fprintf(stderr, "bench_build: unknown option %s\n", a.c_str()); return 2; }
     }
@@ -128,6 +190,10 @@ int main(int argc, char** argv) {
         const std::size_t comma = std::min(cases.find(',', pos), cases.size());
         const std::string name = cases.substr(pos, comma - pos);
         pos = comma + 1;
+        if (name == "fur") {
+            time_grouping(scale, repeat, threads, cluster_size);
+            continue;
+        }
         const std::vector<Aabb> boxes = make_case(name, scale);
         BuildOptions o;
         o.threads = threads;
