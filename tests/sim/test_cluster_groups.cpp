@@ -16,6 +16,8 @@
 #include <cmath>
 #include <numeric>
 
+namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
+
 using namespace rtc;
 using namespace rtc::test;
 using rtc::cluster_detail::Axes;
@@ -192,3 +194,5 @@ TEST_CASE("cluster groups: the fur's grouping is its reference's, including grou
     REQUIRE(caps.size() == 150000);
     check_same_groups(caps, {256});
 }
+
+}  // namespace RTCSIM_TEST_FILE
