@@ -4,6 +4,7 @@
 // compiles to nothing and the counting sink to an increment of a local array.
 #pragma once
 
+#include "core/count_sums.h"
 #include "core/events.h"
 
 #include <array>
@@ -11,7 +12,7 @@
 #include <cstdint>
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace rtc {
@@ -30,8 +31,14 @@ struct RayCounts {
 
     // Zeroes the counts with vector stores: a new RayCounts{} per pixel
     // compiled to `rep stos`, 14 instructions to callgrind and slow to start.
+    // With AVX, whole 32-byte stores, the last one overlapping the one before
+    // when the counts are not a multiple of 8 (4 stores for 31 counts, not 9).
     void clear() {
-#if defined(__SSE2__)
+#if defined(__AVX__)
+        static_assert(sizeof n >= 32);
+        for (std::size_t b = 0; b + 32 <= sizeof n; b += 32) store32(b, _mm256_setzero_si256());
+        if (sizeof n % 32) store32(sizeof n - 32, _mm256_setzero_si256());
+#elif defined(__SSE2__)
         constexpr std::size_t kVectors = sizeof n / 16;
         for (std::size_t v = 0; v < kVectors; ++v)
             _mm_storeu_si128(reinterpret_cast<__m128i*>(n.data()) + v, _mm_setzero_si128());
@@ -41,11 +48,32 @@ struct RayCounts {
 #endif
     }
 
+    // `*this = from` in the same overlapping 32-byte moves (the plain copy
+    // was 8 loads and 8 stores of 16 bytes).
+    void copy_from(const RayCounts& from) {
+#if defined(__AVX__)
+        for (std::size_t b = 0; b + 32 <= sizeof n; b += 32) store32(b, from.load32(b));
+        if (sizeof n % 32) store32(sizeof n - 32, from.load32(sizeof n - 32));
+#else
+        *this = from;
+#endif
+    }
+
     [[nodiscard]] std::uint32_t operator[](Event e) const { return n[static_cast<std::size_t>(e)]; }
-    RayCounts& operator+=(const RayCounts& o) {
-        for (std::size_t i = 0; i < kEventCount; ++i) n[i] += o.n[i];
+    [[gnu::always_inline]] RayCounts& operator+=(const RayCounts& o) {
+        count_sums::add_words<kEventCount>(n.data(), o.n.data());
         return *this;
     }
+
+private:
+#if defined(__AVX__)
+    [[nodiscard]] __m256i load32(std::size_t byte) const {
+        return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(reinterpret_cast<const char*>(n.data()) + byte));
+    }
+    void store32(std::size_t byte, __m256i v) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(reinterpret_cast<char*>(n.data()) + byte), v);
+    }
+#endif
 };
 
 // Totals over many rays; 64-bit so billions of box tests do not wrap.
@@ -57,21 +85,25 @@ struct EventTotals {
         for (std::size_t i = 0; i < kEventCount; ++i) n[i] += c.n[i];
     }
     // The sum of many rays' (or pixels') counts, exactly add() on each. Sums
-    // up to kChunk of them in 32-bit lanes (four per SSE add, no widening),
-    // together with the OR of every count: a chunk whose counts are all below
-    // 2^24 sums to below kChunk * 2^24 = 2^32, so its 32-bit sums did not
-    // wrap; a chunk with a larger count is summed again in 64 bits.
+    // up to kChunk of them in 32-bit lanes (core/count_sums.h: eight per
+    // AVX2 add, no widening), together with the OR of every count: a chunk
+    // whose counts are all below 2^24 sums to below kChunk * 2^24 = 2^32, so
+    // its 32-bit sums did not wrap; a chunk with a larger count is summed
+    // again in 64 bits.
     void add_all(const RayCounts* c, std::size_t count) {
+        static_assert(sizeof(RayCounts) == kEventCount * sizeof(std::uint32_t));
         constexpr std::size_t kChunk = 256;
         constexpr std::uint32_t kLimit = 1u << 24;  // kChunk * kLimit == 2^32
         for (std::size_t begin = 0; begin < count; begin += kChunk) {
             const std::size_t end = begin + kChunk < count ? begin + kChunk : count;
-            RayCounts sum, seen;
-            sum_chunk(c + begin, end - begin, sum, seen);
+            // Not RayCounts (zeroed on construction: `rep stos`), sum_records zeroes them.
+            std::uint32_t sum[kEventCount], seen[kEventCount];
+            count_sums::sum_records<kEventCount>(reinterpret_cast<const std::uint32_t*>(c + begin), end - begin,
+                                                 sum, seen);
             std::uint32_t any = 0;
-            for (std::size_t i = 0; i < kEventCount; ++i) any |= seen.n[i];
+            for (std::size_t i = 0; i < kEventCount; ++i) any |= seen[i];
             if (any < kLimit) {
-                add(sum);
+                for (std::size_t i = 0; i < kEventCount; ++i) n[i] += sum[i];
             } else {
                 for (std::size_t r = begin; r < end; ++r) add(c[r]);
             }
@@ -83,71 +115,6 @@ struct EventTotals {
     }
     bool operator==(const EventTotals&) const = default;
 
-private:
-    // The 32-bit sums and ORs of `count` counts. With SSE the counts are read
-    // in groups of kGroup (two 26-count RayCounts are 13 whole vectors): lane
-    // sums per group word, in two passes over half the words each so that
-    // every sum and OR stays in a register, then folded per event. About
-    // half the instructions of a loop over each RayCounts's 6.5 vectors.
-    static void sum_chunk(const RayCounts* c, std::size_t count, RayCounts& sum, RayCounts& seen) {
-        sum.clear();
-        seen.clear();
-        std::size_t done = 0;
-#if defined(__SSE2__)
-        static_assert(sizeof(RayCounts) == kEventCount * sizeof(std::uint32_t));
-        constexpr std::size_t kGroup = kEventCount % 4 == 0 ? 1 : kEventCount % 2 == 0 ? 2 : 4;
-        constexpr std::size_t kWords = kGroup * kEventCount, kVectors = kWords / 4;
-        static_assert(kWords % 4 == 0);
-        const std::size_t groups = count / kGroup;
-        const auto* words = reinterpret_cast<const std::uint32_t*>(c);
-        alignas(16) std::uint32_t lane_sum[kWords], lane_seen[kWords];
-        // Aligned groups (the usual case: an even-width row of a frame whose
-        // array is 16-byte aligned) let each add and OR read memory itself.
-        if (reinterpret_cast<std::uintptr_t>(words) % 16 == 0) {
-            sum_lanes<0, kVectors / 2, kWords, true>(words, groups, lane_sum, lane_seen);
-            sum_lanes<kVectors / 2, kVectors - kVectors / 2, kWords, true>(words, groups, lane_sum, lane_seen);
-        } else {
-            sum_lanes<0, kVectors / 2, kWords, false>(words, groups, lane_sum, lane_seen);
-            sum_lanes<kVectors / 2, kVectors - kVectors / 2, kWords, false>(words, groups, lane_sum, lane_seen);
-        }
-        for (std::size_t g = 0; g < kGroup; ++g)
-            for (std::size_t i = 0; i < kEventCount; ++i) {
-                sum.n[i] += lane_sum[g * kEventCount + i];
-                seen.n[i] |= lane_seen[g * kEventCount + i];
-            }
-        done = groups * kGroup;
-#endif
-        for (std::size_t r = done; r < count; ++r)
-            for (std::size_t i = 0; i < kEventCount; ++i) {
-                sum.n[i] += c[r].n[i];
-                seen.n[i] |= c[r].n[i];
-            }
-    }
-
-#if defined(__SSE2__)
-    // Vectors [First, First + N) of each of `groups` groups of kWords words:
-    // their lane sums and ORs into sum[4 First, 4 (First + N)) and seen[...].
-    template <std::size_t First, std::size_t N, std::size_t kWords, bool kAligned>
-    [[gnu::always_inline]] static void sum_lanes(const std::uint32_t* words, std::size_t groups,
-                                                 std::uint32_t* sum, std::uint32_t* seen) {
-        __m128i s[N], o[N];
-        for (std::size_t v = 0; v < N; ++v) s[v] = o[v] = _mm_setzero_si128();
-        for (std::size_t g = 0; g < groups; ++g) {
-            const std::uint32_t* p = words + g * kWords + First * 4;
-#pragma GCC unroll 16
-            for (std::size_t v = 0; v < N; ++v) {
-                const auto* at = reinterpret_cast<const __m128i*>(p + 4 * v);
-                const __m128i x = kAligned ? _mm_load_si128(at) : _mm_loadu_si128(at);
-                s[v] = _mm_add_epi32(s[v], x);
-                o[v] = _mm_or_si128(o[v], x);
-            }
-        }
-        for (std::size_t v = 0; v < N; ++v) {
-            _mm_store_si128(reinterpret_cast<__m128i*>(sum + 4 * (First + v)), s[v]);
-            _mm_store_si128(reinterpret_cast<__m128i*>(seen + 4 * (First + v)), o[v]);
-        }
-    }
-#endif
 };
 
 // Counts the events of the ray being traced. The owner flushes `ray` into its

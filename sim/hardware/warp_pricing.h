@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/sinks.h"
+#include "core/uninitialized.h"
 #include "sim/hardware/call_profiles.h"
 #include "sim/hardware/cost_model.h"
 
@@ -22,7 +23,8 @@ struct LaneWork {
 
 // The lanes of one wave (idle lanes are simply absent).
 struct WaveWork {
-    std::vector<LaneWork> lanes;
+    // Unconstructed on emplace_back(): the frame writes every field of a new lane.
+    UninitializedVector<LaneWork> lanes;
     std::vector<CallProfiles::Id> calls;  // each call's profile (its own events)
     const CallProfiles* profiles = nullptr;
 

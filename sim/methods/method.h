@@ -17,7 +17,7 @@
 #include "core/sinks.h"
 #include "core/traverse.h"
 #include "intersectors/kinds.h"
-#include "sim/execution/frame.h"
+#include "sim/execution/frame_result.h"
 #include "sim/hardware/leaf_programs.h"
 #include "sim/hardware/memory_model.h"
 #include "sim/methods/common/geometry.h"

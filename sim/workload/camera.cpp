@@ -48,7 +48,7 @@ CameraFrame camera_frame(const Camera& c) {
     return f;
 }
 
-Ray jittered_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
+Ray jittered_ray(const CameraLanes& frame, std::uint32_t px, std::uint32_t py,
                  std::uint32_t sample, std::uint32_t spp, std::uint32_t seed) {
     const SampleRng rng(seed, px, py, sample);
     const glm::vec2 o = pixel_offset(sample, spp, rng.uniform(rng_dim::kPixelX), rng.uniform(rng_dim::kPixelY));
@@ -57,7 +57,7 @@ Ray jittered_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
 
 Ray primary_ray(const Camera& camera, std::uint32_t px, std::uint32_t py, std::uint32_t sample,
                 std::uint32_t spp, std::uint32_t seed) {
-    return primary_ray(camera_frame(camera), px, py, sample, spp, seed);
+    return primary_ray(CameraLanes(camera_frame(camera)), px, py, sample, spp, seed);
 }
 
 Camera auto_frame(const Aabb& bounds, float fov_deg, int width, int height, Vec3 from,

@@ -10,7 +10,13 @@
 #include "core/box_lanes.h"
 #include "core/ray.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 namespace rtc {
 
@@ -40,6 +46,20 @@ struct CameraFrame {
 
 [[nodiscard]] CameraFrame camera_frame(const Camera& camera);
 
+// A CameraFrame as ray generation reads it: with SSE, each vector on the
+// lanes (x, y, z, 0) of one register, made once per frame. As Vec3s each was
+// three loads and a shuffle per camera ray.
+struct CameraLanes {
+#if defined(__SSE2__)
+    __m128 origin, corner, right, down;
+    explicit CameraLanes(const CameraFrame& f)
+        : origin(load3(f.origin)), corner(load3(f.corner)), right(load3(f.right)), down(load3(f.down)) {}
+#else
+    CameraFrame frame;
+    explicit CameraLanes(const CameraFrame& f) : frame(f) {}
+#endif
+};
+
 // Ray through the point (px + ox, py + oy) of the image plane, offsets in
 // [0, 1) pixels; unit direction (t in world units), tmin 0, tmax +inf.
 // frame_ray_reference() is the definition; frame_ray() computes the same
@@ -51,25 +71,38 @@ struct CameraFrame {
     return {f.origin, 0.0f, glm::normalize(f.corner + x * f.right + y * f.down), kInfinity};
 }
 
-[[nodiscard]] inline Ray frame_ray(const CameraFrame& f, float x, float y) {
+[[nodiscard, gnu::always_inline]] inline Ray frame_ray(const CameraLanes& f, float x, float y) {
 #if defined(__SSE2__)
-    const __m128 v = _mm_add_ps(_mm_add_ps(load3(f.corner), _mm_mul_ps(_mm_set1_ps(x), load3(f.right))),
-                                _mm_mul_ps(_mm_set1_ps(y), load3(f.down)));
+    const __m128 v = _mm_add_ps(_mm_add_ps(f.corner, _mm_mul_ps(_mm_set1_ps(x), f.right)),
+                                _mm_mul_ps(_mm_set1_ps(y), f.down));
     const __m128 sq = _mm_mul_ps(v, v);
     const __m128 dot =
         _mm_add_ss(_mm_add_ss(sq, _mm_shuffle_ps(sq, sq, _MM_SHUFFLE(1, 1, 1, 1))), _mm_movehl_ps(sq, sq));
     const __m128 inv = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(dot));
+    const __m128 dir = _mm_mul_ps(v, _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0)));
+    // The ray in two 16-byte stores: (origin, tmin = the origin's lane 3,
+    // 0) and (direction, tmax = +inf in lane 3).
+    static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
+    const __m128 inf_w = _mm_set_ps(kInfinity, 0.0f, 0.0f, 0.0f);
+#if defined(__SSE4_1__)
+    const __m128 dir_tmax = _mm_blend_ps(dir, inf_w, 0x8);
+#else
+    const __m128 xyz = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+    const __m128 dir_tmax = _mm_or_ps(_mm_and_ps(dir, xyz), inf_w);
+#endif
     Ray r;
-    r.origin = f.origin;
-    store3(_mm_mul_ps(v, _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0))), r.direction);
+    std::memcpy(reinterpret_cast<char*>(&r), &f.origin, 16);
+    std::memcpy(reinterpret_cast<char*>(&r) + 16, &dir_tmax, 16);
     return r;
 #else
-    return frame_ray_reference(f, x, y);
+    return frame_ray_reference(f.frame, x, y);
 #endif
 }
 
+[[nodiscard]] inline Ray frame_ray(const CameraFrame& f, float x, float y) { return frame_ray(CameraLanes(f), x, y); }
+
 // The jittered camera ray of sample `sample` of `spp` > 1 (primary_ray's out-of-line part).
-[[nodiscard]] Ray jittered_ray(const CameraFrame& frame, std::uint32_t px, std::uint32_t py,
+[[nodiscard]] Ray jittered_ray(const CameraLanes& frame, std::uint32_t px, std::uint32_t py,
                                std::uint32_t sample, std::uint32_t spp, std::uint32_t seed);
 
 // Primary ray of sample `sample` of `spp` in pixel (px, py). With spp == 1 the
@@ -77,7 +110,7 @@ struct CameraFrame {
 // inside the pixel by the counter-based RNG (sim/rng.h). The centre's ray is
 // made inline (as a call, its saved registers and arguments cost about 20
 // instructions per camera ray), the jittered one out of line.
-[[nodiscard, gnu::always_inline]] inline Ray primary_ray(const CameraFrame& frame, std::uint32_t px,
+[[nodiscard, gnu::always_inline]] inline Ray primary_ray(const CameraLanes& frame, std::uint32_t px,
                                                           std::uint32_t py, std::uint32_t sample,
                                                           std::uint32_t spp, std::uint32_t seed) {
     if (spp > 1) return jittered_ray(frame, px, py, sample, spp, seed);

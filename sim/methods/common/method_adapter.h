@@ -11,6 +11,7 @@
 // the instantiation once per frame.
 #pragma once
 
+#include "sim/execution/frame.h"
 #include "sim/methods/method.h"
 
 #include <span>
