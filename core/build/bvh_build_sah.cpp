@@ -15,12 +15,17 @@ float area(const Box4& b) {
 }
 
 // The SAH cost of a plane, given area x count of each side; one function so
-// that both sweeps round (and contract) alike.
+// that the sweep and the two-primitive split round (and contract) alike.
 float plane_cost(const BuildOptions& o, float left, float right, float inv_area) {
     return o.traversal_cost + o.intersection_cost * (left + right) * inv_area;
 }
 
 float inverse_area(float area_of_node) { return area_of_node > 0.0f ? 1.0f / area_of_node : 0.0f; }
+
+// Eight lanes for the sweep (not in a function's signature: without AVX
+// that would change the calling convention, which GCC warns about).
+using V8 = float __attribute__((vector_size(32)));
+using I8 = std::int32_t __attribute__((vector_size(32)));
 
 }  // namespace
 
@@ -28,6 +33,10 @@ float inverse_area(float area_of_node) { return area_of_node > 0.0f ? 1.0f / are
 // Only planes just after an occupied bin are priced: a plane after an empty
 // bin splits the same primitives as the one before it, so it has bit for bit
 // the same cost and would lose the tie anyway. This keeps small nodes cheap.
+// The left parts (growing rightwards) and the right parts (growing leftwards)
+// are grown together in the two halves of eight lanes, each in the order of
+// a separate sweep, so each part's box and area are those of its own sweep;
+// then the planes are priced in order.
 Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, float area_of_node,
                      const BuildOptions& o) {
     const float inv_area = inverse_area(area_of_node);
@@ -37,21 +46,36 @@ Split find_sah_split(const Bins& bins, const Occupied& used, const BinMap& map, 
         const auto& bin = bins.bin[axis];
         const auto& u = used.bin[axis];
         const int m = used.count[axis];
-        // Right-to-left sweep stores the cost of each right part.
-        std::array<float, kMaxBins> right_cost;
-        Box4 acc;
-        std::uint32_t n = 0;
-        for (int j = m - 1; j > 0; --j) {
-            acc.extend(bin[u[j]].box.lo, bin[u[j]].box.hi);
-            n += bin[u[j]].count;
-            right_cost[j] = area(acc) * static_cast<float>(n);
+        // Area x count of the bins left of plane j (u[0, j)) and right of it (u[j, m)).
+        std::array<float, kMaxBins> left_cost, right_cost;
+        // The left part in lanes 0-3, the right part in lanes 4-7.
+        V8 lo = V8{} + kInfinity, hi = -lo;
+        std::uint32_t n_left = 0, n_right = 0;
+        for (int k = 1; k < m; ++k) {
+            const Bin& l = bin[u[k - 1]];
+            const Bin& r = bin[u[m - k]];
+            const V8 blo = __builtin_shufflevector(l.box.lo, r.box.lo, 0, 1, 2, 3, 4, 5, 6, 7);
+            const V8 bhi = __builtin_shufflevector(l.box.hi, r.box.hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#ifdef __AVX__
+            lo = _mm256_min_ps(blo, lo);  // Box4::extend's selections
+            hi = _mm256_max_ps(bhi, hi);
+#else
+            lo = blo < lo ? blo : lo;
+            hi = hi < bhi ? bhi : hi;
+#endif
+            n_left += l.count;
+            n_right += r.count;
+            // area() of each half, the same operations in the same order:
+            // ((xy + yz) + zx) x 2, lo's lane 3 (an id) masked.
+            const V8 e = hi - reinterpret_cast<V8>(reinterpret_cast<I8>(lo) & I8{-1, -1, -1, 0, -1, -1, -1, 0});
+            const V8 p = e * __builtin_shufflevector(e, e, 1, 2, 0, 3, 5, 6, 4, 7);
+            const V8 xy_yz = p + __builtin_shufflevector(p, p, 1, 1, 1, 1, 5, 5, 5, 5);
+            const V8 a = 2.0f * (xy_yz + __builtin_shufflevector(p, p, 2, 2, 2, 2, 6, 6, 6, 6));
+            left_cost[k] = a[0] * static_cast<float>(n_left);
+            right_cost[m - k] = a[4] * static_cast<float>(n_right);
         }
-        acc = {};
-        n = 0;
         for (int j = 1; j < m; ++j) {  // plane after bin u[j - 1]
-            acc.extend(bin[u[j - 1]].box.lo, bin[u[j - 1]].box.hi);
-            n += bin[u[j - 1]].count;
-            const float cost = plane_cost(o, area(acc) * static_cast<float>(n), right_cost[j], inv_area);
+            const float cost = plane_cost(o, left_cost[j], right_cost[j], inv_area);
             if (cost < best.cost) best = {axis, u[j - 1] + 1, cost};  // strict: ties keep the first
         }
     }
