@@ -102,15 +102,6 @@ void WarpFrame::start_row(Thread& th, std::uint32_t y0, std::uint32_t y1) {
     th.pixel_hits.assign(pixels, {});
 }
 
-void WarpFrame::start_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) {
-    const auto width = static_cast<std::size_t>(out_.width);
-    for (std::uint32_t py = y0; py < y1; ++py)
-        for (std::uint32_t px = x0; px < x1; ++px) {
-            out_.pixel_counts[py * width + px].clear();
-            out_.radiance[py * width + px] = Vec3{0.0f};
-        }
-}
-
 void WarpFrame::finish_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) {
     const std::uint32_t spp = work_.path.spp;
     if (spp == 1) return;  // x / 1 is x

@@ -95,11 +95,10 @@ public:
 
     // Camera workloads: a task's row of tiles [y0, y1), and in it the tile
     // of columns [x0, x1): before and after its samples. Each pixel's counts
-    // and radiance are summed in the result's own slots (zeroed by
-    // start_tile); finish_tile divides the radiance by the sample count and
+    // and radiance are summed in the result's own slots (started by its
+    // first ray); finish_tile divides the radiance by the sample count and
     // finish_row adds the rows' counts to the task's totals.
     void start_row(Thread& th, std::uint32_t y0, std::uint32_t y1);
-    void start_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1);
     void finish_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1);
     void finish_row(Thread& th, Task& t, std::uint32_t y0, std::uint32_t y1);
 
@@ -134,11 +133,16 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         CountingSink sink;
         auto trace_ray = tracer(sink, th.scratch);
         // One ray of a lane: its own counts (the sink is cleared per ray),
-        // added to the lane's and recorded in the wave of its bounce.
-        const auto trace_lane = [&](const Ray& ray, std::size_t depth, std::uint32_t pixel, RayCounts& into) {
+        // added to the lane's (`first`: copied, so the slot needs no
+        // clearing) and recorded in the wave of its bounce.
+        const auto trace_lane = [&](const Ray& ray, std::size_t depth, std::uint32_t pixel, RayCounts& into,
+                                    bool first) {
             sink.ray.clear();
             const TraceHit hit = trace_ray(ray);
-            into += sink.ray;
+            if (first)
+                into.copy_from(sink.ray);
+            else
+                into += sink.ray;
             ++t.rays_traced;
             WarpFrame::add_lane(th, depth, pixel, sink.ray);
             return hit;
@@ -152,19 +156,22 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             f.start_row(th, y0, y1);
             for (std::uint32_t x0 = 0; x0 < width; x0 += tw) {
                 const std::uint32_t x1 = std::min(x0 + tw, width);
-                f.start_tile(x0, x1, y0, y1);
                 for (std::uint32_t s = 0; s < frame.path.spp; ++s) {
                     for (std::uint32_t py = y0; py < y1; ++py)
                         for (std::uint32_t px = x0; px < x1; ++px) {
                             const auto pixel = static_cast<std::uint32_t>(py * width + px);
                             const std::size_t local = (py - y0) * width + px;
-                            out.radiance[pixel] +=
+                            // Sample 0's camera ray (every path's first) starts the
+                            // pixel's sums: its slots are not cleared first.
+                            const Vec3 r =
                                 trace_path(cam, px, py, s, frame.path, [&](const Ray& ray, std::uint32_t depth) {
-                                    const TraceHit h = trace_lane(ray, depth, pixel, out.pixel_counts[pixel]);
+                                    const TraceHit h =
+                                        trace_lane(ray, depth, pixel, out.pixel_counts[pixel], s == 0 && depth == 0);
                                     if (fo.record_rays) th.pixel_rays[local].push_back(ray);
                                     if (fo.record_hits) th.pixel_hits[local].push_back(h);
                                     return h;
                                 }).radiance;
+                            out.radiance[pixel] = (s == 0 ? Vec3{0.0f} : out.radiance[pixel]) + r;
                         }
                     f.flush_waves(th, t);
                 }
@@ -176,9 +183,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             const auto w = static_cast<std::size_t>(x.warp_width);
             for (std::size_t w0 = task * f.rays_per_task(); w0 < end; w0 += w) {
                 for (std::size_t i = w0; i < std::min(end, w0 + w); ++i) {
-                    RayCounts& counts = out.ray_counts[i];
-                    counts.clear();
-                    const TraceHit h = trace_lane(frame.rays[i], 0, 0, counts);
+                    const TraceHit h = trace_lane(frame.rays[i], 0, 0, out.ray_counts[i], /*first=*/true);
                     if (fo.record_rays) t.rays.push_back(frame.rays[i]);
                     if (fo.record_hits) t.hits.push_back(h);
                 }

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace rtc {
 
@@ -24,6 +29,44 @@ void add_counts(EffectiveCounts& eff, const RayCounts& c, const List& events, do
     for (const std::uint8_t e : events) eff[e] += scale * static_cast<double>(c.n[e]);
 }
 
+// price_of(lane counts, events) of lanes [i, i + 4), each lane's sum in the
+// same order (mul, then add: the same doubles), four lanes per instruction;
+// the counts are gathered from the lanes' records.
+#if defined(__AVX2__)
+template <class List>
+__m256d price_of_4(const LaneWork* lanes, const CostModel& m, const List& events) {
+    static_assert(sizeof(LaneWork) % sizeof(std::uint32_t) == 0);
+    constexpr int kStride = sizeof(LaneWork) / sizeof(std::uint32_t);
+    const __m128i index = _mm_setr_epi32(0, kStride, 2 * kStride, 3 * kStride);
+    const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
+    const __m256d two31 = _mm256_set1_pd(2147483648.0);
+    __m256d s = _mm256_setzero_pd();
+    for (const std::uint8_t e : events) {
+        const __m128i c = _mm_i32gather_epi32(reinterpret_cast<const int*>(lanes->counts.n.data() + e), index, 4);
+        // Unsigned to double, exactly: (c - 2^31) as a signed int, + 2^31.
+        const __m256d d = _mm256_add_pd(_mm256_cvtepi32_pd(_mm_xor_si128(c, sign)), two31);
+        s = _mm256_add_pd(s, _mm256_mul_pd(d, _mm256_set1_pd(m.cycles[e])));
+    }
+    return s;
+}
+#endif
+
+// Every lane's shader and RT-unit price (without lockstep events).
+void lane_prices(const WaveWork& wave, const CostModel& m, double* shader, double* rt) {
+    const std::size_t n = wave.lanes.size();
+    std::size_t i = 0;
+#if defined(__AVX2__)
+    for (; i + 4 <= n; i += 4) {
+        _mm256_storeu_pd(shader + i, price_of_4(&wave.lanes[i], m, kShaderEvents));
+        _mm256_storeu_pd(rt + i, price_of_4(&wave.lanes[i], m, kRtEvents));
+    }
+#endif
+    for (; i < n; ++i) {
+        shader[i] = price_of(wave.lanes[i].counts, m, kShaderEvents);
+        rt[i] = price_of(wave.lanes[i].counts, m, kRtEvents);
+    }
+}
+
 }  // namespace
 
 double program_price(const ProgramCounts& call, const CostModel& m) {
@@ -40,7 +83,13 @@ void ProgramPrices::extend(const CallProfiles& table, CallProfiles::Id id, const
     while (price_.size() <= id) price_.push_back(program_price(table[static_cast<CallProfiles::Id>(price_.size())], m));
 }
 
-WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& prices, EffectiveCounts* eff) {
+namespace {
+
+// kLanesAtOnce: the lanes' shader and RT prices first, several lanes per
+// instruction (lane_prices); the reference prices lane by lane. Both give
+// the same doubles (tests/execution/test_warp_execution.cpp).
+template <bool kLanesAtOnce>
+WavePrice price_wave_impl(const WaveWork& wave, const CostModel& m, ProgramPrices& prices, EffectiveCounts* eff) {
     WavePrice p;
     if (wave.lanes.empty()) return p;
     // Shader work in lockstep: the wave pays its most expensive lane once.
@@ -50,11 +99,17 @@ WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& pr
     // RT-unit events the machine runs as shader code (AMD's traversal loop):
     // in lockstep, so the wave pays its slowest lane's loop, outside the unit.
     const std::vector<Event>& loop = m.execution.lockstep_events;
+    thread_local std::vector<double> lane_shader, lane_rt;
+    if constexpr (kLanesAtOnce) {
+        lane_shader.resize(wave.lanes.size());
+        lane_rt.resize(wave.lanes.size());
+        lane_prices(wave, m, lane_shader.data(), lane_rt.data());
+    }
     for (std::size_t i = 0; i < wave.lanes.size(); ++i) {
         const LaneWork& l = wave.lanes[i];
-        const double s = price_of(l.counts, m, kShaderEvents);
+        const double s = kLanesAtOnce ? lane_shader[i] : price_of(l.counts, m, kShaderEvents);
         if (s > p.shader) p.shader = s, shader_lane = i;
-        double r = price_of(l.counts, m, kRtEvents);
+        double r = kLanesAtOnce ? lane_rt[i] : price_of(l.counts, m, kRtEvents);
         if (!loop.empty()) {
             double in_loop = 0.0;
             for (const Event e : loop) in_loop += static_cast<double>(l.counts[e]) * m[e];
@@ -118,6 +173,17 @@ WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& pr
         for (const std::uint8_t e : kHandOffEvents) (*eff)[e] += max_calls;
     }
     return p;
+}
+
+}  // namespace
+
+WavePrice price_wave(const WaveWork& wave, const CostModel& m, ProgramPrices& prices, EffectiveCounts* eff) {
+    return price_wave_impl<true>(wave, m, prices, eff);
+}
+
+WavePrice price_wave_reference(const WaveWork& wave, const CostModel& m, ProgramPrices& prices,
+                               EffectiveCounts* eff) {
+    return price_wave_impl<false>(wave, m, prices, eff);
 }
 
 void WarpTotals::add(const WavePrice& p, std::size_t active_lanes) {

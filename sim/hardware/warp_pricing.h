@@ -71,6 +71,9 @@ using EffectiveCounts = std::array<double, kEventCount>;
 
 [[nodiscard]] WavePrice price_wave(const WaveWork& wave, const CostModel& model, ProgramPrices& prices,
                                    EffectiveCounts* effective = nullptr);
+// The same, lane by lane: the reference the tests hold price_wave to.
+[[nodiscard]] WavePrice price_wave_reference(const WaveWork& wave, const CostModel& model, ProgramPrices& prices,
+                                             EffectiveCounts* effective = nullptr);
 
 // The price of one call profile's program events, and its counts added to
 // effective counts.

@@ -1,7 +1,8 @@
 // The SIMT execution model: a wave priced by hand; frames traced in warps
 // count exactly what the per-ray model counts and hit the same primitives;
 // the wave records re-price to the figures computed while tracing; effective
-// counts reproduce the cycles linearly; nothing depends on the thread count.
+// counts reproduce the cycles linearly; nothing depends on the thread count;
+// lanes priced several at once give the lane-by-lane reference's doubles.
 #include "scenes/generators/bundle.h"
 #include "sim/hardware/warp_trace.h"
 #include "sim/methods/method.h"
@@ -10,6 +11,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
 
@@ -178,6 +181,71 @@ TEST_CASE("warp execution: ray lists run W consecutive rays per wave") {
     CHECK(r.totals == cam.totals);
     CHECK(r.warp[0].waves == (cam.rays.size() + 31) / 32);
     CHECK(r.warp[0].lanes == cam.rays.size());
+}
+
+namespace {
+
+CostModel random_model(std::mt19937& rng, double rt_parallel, bool lockstep) {
+    std::uniform_real_distribution<double> cost(0.0, 300.0);
+    CostModel m;
+    for (double& c : m.cycles) c = cost(rng);
+    m.cycles[static_cast<std::size_t>(Event::TlasNodeVisit)] = 0.0;  // a free event
+    m.execution.kind = ExecutionKind::Warp;
+    m.execution.rt_parallel_lanes = rt_parallel;
+    if (lockstep) m.execution.lockstep_events = {Event::BlasNodeVisit, Event::TlasBoxTest};
+    return m;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
+    std::mt19937 rng(39);
+    CallProfiles table;
+    std::vector<ProgramCounts> calls;
+    for (int k = 0; k < 12; ++k) {
+        ProgramCounts c;
+        for (const std::uint8_t e : kProgramEvents) c.n[kProgramSlot[e]] = static_cast<std::uint16_t>(rng() % 40);
+        calls.push_back(c);
+    }
+    int checked = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const double parallel = std::array{1.0, 4.0, 32.0, 2.5}[trial % 4];
+        const CostModel m = random_model(rng, parallel, trial % 5 == 0);
+        WaveWork w;
+        w.profiles = &table;
+        const std::size_t lanes = 1 + rng() % 32;  // partial warps too (a lane tail)
+        for (std::size_t i = 0; i < lanes; ++i) {
+            LaneWork& l = w.lanes.emplace_back();
+            l.counts.clear();
+            // Some counts past 2^31: converted as unsigned.
+            for (std::uint32_t& n : l.counts.n) n = rng() % 7 == 0 ? rng() : rng() % 200;
+            for (const std::uint8_t e : kProgramEvents) l.counts.n[e] = 0;
+            l.first_call = static_cast<std::uint32_t>(w.calls.size());
+            l.calls = rng() % 6;
+            l.pixel = static_cast<std::uint32_t>(i);
+            for (std::uint32_t c = 0; c < l.calls; ++c) w.calls.push_back(table.id(calls[rng() % calls.size()]));
+        }
+        ProgramPrices fast_prices, ref_prices;
+        EffectiveCounts fast_eff{}, ref_eff{};
+        const WavePrice a = price_wave(w, m, fast_prices, &fast_eff);
+        const WavePrice b = price_wave_reference(w, m, ref_prices, &ref_eff);
+        const WavePrice c = price_wave(w, m, fast_prices);
+        CHECK(same_bits(a.shader, b.shader));
+        CHECK(same_bits(a.rt, b.rt));
+        CHECK(same_bits(a.rt_lane_sum, b.rt_lane_sum));
+        CHECK(same_bits(a.handoff, b.handoff));
+        CHECK(same_bits(a.programs, b.programs));
+        CHECK(a.rounds == b.rounds);
+        CHECK(a.active_lane_rounds == b.active_lane_rounds);
+        CHECK(same_bits(c.total(), b.total()));
+        bool same_eff = true;
+        for (std::size_t e = 0; e < kEventCount; ++e) same_eff = same_eff && same_bits(fast_eff[e], ref_eff[e]);
+        CHECK(same_eff);
+        ++checked;
+    }
+    CHECK(checked == 400);
 }
 
 }  // namespace RTCSIM_TEST_FILE
