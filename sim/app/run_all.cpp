@@ -181,7 +181,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
         std::cerr << "estimate: " << count_text(work.rays) << " rays, "
                   << (work.primitives > 0 ? count_text(work.primitives) + " primitives, " : std::string())
-                  << format_bytes(work.memory_bytes) << " of memory\n";
+                  << format_estimate_bytes(work.memory_bytes) << " of memory\n";
     }
     std::vector<RunResult> runs;
     // The last point in full (per-pixel data too) while the next point has

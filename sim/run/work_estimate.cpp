@@ -91,7 +91,7 @@ double memory_ceiling(const WorkLimits& limits) {
     return 16.0 * 1024 * 1024 * 1024;
 }
 
-std::string format_bytes(double bytes) {
+std::string format_estimate_bytes(double bytes) {
     const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
     int u = 0;
     while (bytes >= 1024.0 && u < 6) {
@@ -226,9 +226,9 @@ void check_work(const WorkEstimate& e, const WorkLimits& limits, const std::stri
                          " (raise it or pass --force to run anyway)");
     const double ceiling = memory_ceiling(limits);
     if (e.memory_bytes > ceiling)
-        throw InputError(file + ": " + e.memory_key + ": about " + format_bytes(e.memory_bytes) +
+        throw InputError(file + ": " + e.memory_key + ": about " + format_estimate_bytes(e.memory_bytes) +
                          " of memory (" + e.memory_detail + ") exceed --max-memory " +
-                         format_bytes(ceiling) + " (raise it or pass --force to run anyway)");
+                         format_estimate_bytes(ceiling) + " (raise it or pass --force to run anyway)");
 }
 
 }  // namespace rtc

@@ -55,8 +55,10 @@ void check_work(const WorkEstimate& estimate, const WorkLimits& limits, const st
 
 // "123456", or "1.23e+07" from a million on.
 [[nodiscard]] std::string count_text(double x);
-// "1.5 GiB", "512 MiB", "12 KiB", "100 B".
-[[nodiscard]] std::string format_bytes(double bytes);
+// "1.5 GiB", "512 MiB", "12 KiB", "100 B": an estimate's size in at most two
+// figures (sim/util/table.h's format_bytes prints measured sizes with two
+// decimals; one name for both was ambiguous for an int argument).
+[[nodiscard]] std::string format_estimate_bytes(double bytes);
 // Parses a size for --max-memory: bytes, or a number with K, M, G, T
 // (powers of 1024, optionally followed by "iB" or "B"); nullopt if invalid.
 [[nodiscard]] std::optional<double> parse_byte_size(const std::string& text);

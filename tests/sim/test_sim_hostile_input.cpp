@@ -141,7 +141,7 @@ TEST_CASE("hostile config: the ceilings on the command line") {
     CHECK_FALSE(parse_byte_size("lots"));
     CHECK_THROWS_WITH_AS(static_cast<void>(parse_cli({"x.json", "--max-rays", "many"})), doctest::Contains("--max-rays"), InputError);
     CHECK_THROWS_WITH_AS(static_cast<void>(parse_cli({"x.json", "--max-memory", "0"})), doctest::Contains("--max-memory"), InputError);
-    CHECK(format_bytes(1536.0 * 1024 * 1024) == "1.5 GiB");
+    CHECK(format_estimate_bytes(1536.0 * 1024 * 1024) == "1.5 GiB");
 }
 
 TEST_CASE("hostile config: a --set that is not UTF-8 (found by fuzz_config)") {
