@@ -68,6 +68,48 @@ TEST_CASE("parallel_for: an exception in a worker reaches the caller and stops t
     }
 }
 
+TEST_CASE("parallel_for: calls inside a call, and callers on two threads at once, each run every index once") {
+    // The pool serves one call at a time; a call from inside another's work
+    // (which would wait for the pool it is part of) or from a second thread
+    // while the pool is busy runs on fresh threads instead.
+    constexpr std::size_t kOuter = 16, kInner = 200;
+    std::vector<std::atomic<int>> hits(kOuter * kInner);
+    std::atomic<unsigned> max_inner_thread{0};
+    parallel_for(kOuter, 3, [&](std::size_t i, unsigned) {
+        parallel_for(kInner, 2, [&](std::size_t j, unsigned thread) {
+            if (thread > max_inner_thread.load()) max_inner_thread.store(thread);
+            ++hits[i * kInner + j];
+        }, 1);
+    }, 1);
+    for (std::size_t k = 0; k < hits.size(); ++k) REQUIRE(hits[k] == 1);
+    CHECK(max_inner_thread.load() < 2u);
+
+    constexpr std::size_t kCount = 20000;
+    std::vector<std::atomic<int>> a(kCount), b(kCount);
+    const auto many_calls = [](std::vector<std::atomic<int>>& out, unsigned threads) {
+        for (std::size_t round = 0; round < 50; ++round)
+            parallel_for(kCount / 50, threads,
+                         [&](std::size_t i, unsigned) { ++out[round * (kCount / 50) + i]; }, 7);
+    };
+    std::thread other([&] { many_calls(b, 4); });
+    many_calls(a, 2);
+    other.join();
+    for (std::size_t k = 0; k < kCount; ++k) {
+        REQUIRE(a[k] == 1);
+        REQUIRE(b[k] == 1);
+    }
+    // Fewer threads after more, then more again: the pool's workers are
+    // reused and the thread ids stay below the count asked for.
+    for (unsigned threads : {8u, 2u, 5u}) {
+        std::atomic<unsigned> max_thread{0};
+        parallel_for(1000, threads, [&](std::size_t, unsigned thread) {
+            unsigned seen = max_thread.load();
+            while (thread > seen && !max_thread.compare_exchange_weak(seen, thread)) {}
+        }, 1);
+        CHECK(max_thread.load() < threads);
+    }
+}
+
 namespace {
 
 bool identical(const Bvh& a, const Bvh& b) {
