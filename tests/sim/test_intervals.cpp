@@ -3,6 +3,7 @@
 // 90 % interval of each speedup; identical at any thread count, containing
 // the point estimate, narrower for a smaller covariance, absent (with the
 // reason) for a preset without one, in report.json, results.csv and tables.
+#include "sim/hardware/uncertainty/draw_pricing.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
 #include "sim/run/simulation.h"
@@ -10,7 +11,9 @@
 
 #include <doctest/doctest.h>
 
+#include <cstring>
 #include <filesystem>
+#include <random>
 
 namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
 
@@ -122,6 +125,65 @@ TEST_CASE("intervals: draws 0 turns them off and says so") {
     for (std::size_t p = 0; p < 4; ++p) CHECK_FALSE(r.one.speedup_interval("obb", p));
     CHECK(r.one.no_interval_reason(0) == "uncertainty.draws is 0: no interval");
     CHECK(report_json(r.one)["speedup_interval_over_ref"]["obb"].empty());
+}
+
+TEST_CASE("draw pricing: rows compared on AVX lanes give the lane-by-lane reference's doubles") {
+    std::mt19937 rng(27);
+    std::uniform_real_distribution<double> cost(0.0, 300.0);
+    CallProfiles table;
+    std::vector<ProgramCounts> calls;
+    for (int k = 0; k < 8; ++k) {
+        ProgramCounts c;
+        for (const std::uint8_t e : kProgramEvents) c.n[kProgramSlot[e]] = static_cast<std::uint16_t>(rng() % 40);
+        calls.push_back(c);
+    }
+    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    int compared = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        CostModel base;
+        for (double& c : base.cycles) c = cost(rng);
+        base.execution.kind = ExecutionKind::Warp;
+        base.execution.rt_parallel_lanes = trial % 3 == 0 ? 4.0 : 1.0;
+        if (trial % 4 == 0) base.execution.lockstep_events = {Event::BlasNodeVisit, Event::TlasBoxTest};
+        // Draws that change 1 to 12 events (past 7 in the RT unit: the
+        // reference's path in both), programs in some trials.
+        const std::size_t changed = 1 + rng() % 12;
+        std::vector<CostModel> models(1 + rng() % 9, base);
+        for (CostModel& m : models)
+            for (std::size_t k = 0; k < changed; ++k) m.cycles[rng() % kEventCount] = cost(rng);
+        DrawSet set{&base, {}};
+        for (const CostModel& m : models) set.draws.push_back(&m);
+        WaveWork w;
+        w.profiles = &table;
+        const std::size_t lanes = 1 + rng() % 32;
+        for (std::size_t i = 0; i < lanes; ++i) {
+            LaneWork& l = w.lanes.emplace_back();
+            l.counts.clear();
+            // Lanes alike in some trials (many dominated), counts past 2^31 in a few.
+            const std::uint32_t spread = trial % 2 ? 3 : 200;
+            for (std::uint32_t& n : l.counts.n) n = rng() % 50 == 0 ? rng() : rng() % spread;
+            for (const std::uint8_t e : kProgramEvents) l.counts.n[e] = 0;
+            l.first_call = static_cast<std::uint32_t>(w.calls.size());
+            l.calls = rng() % 5;
+            l.pixel = static_cast<std::uint32_t>(i);
+            for (std::uint32_t c = 0; c < l.calls; ++c) w.calls.push_back(table.id(calls[rng() % calls.size()]));
+        }
+        WaveDrawPricer fast(set), reference(set, true);
+        std::vector<WarpTotals> a(models.size()), b(models.size());
+        fast.add(w, a.data());
+        reference.add(w, b.data());
+        for (std::size_t d = 0; d < models.size(); ++d) {
+            CAPTURE(trial);
+            CAPTURE(d);
+            CHECK(same_bits(a[d].shader, b[d].shader));
+            CHECK(same_bits(a[d].rt, b[d].rt));
+            CHECK(same_bits(a[d].rt_lane_sum, b[d].rt_lane_sum));
+            CHECK(same_bits(a[d].handoff, b[d].handoff));
+            CHECK(same_bits(a[d].programs, b[d].programs));
+            ++compared;
+        }
+    }
+    CHECK(compared >= 200);
 }
 
 }  // namespace RTCSIM_TEST_FILE

@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace rtc {
 
@@ -23,7 +28,8 @@ void split_unit(InUnit in_unit, const DrawSet& set, std::vector<std::uint8_t>& f
 
 }  // namespace
 
-WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.size()) {
+WaveDrawPricer::WaveDrawPricer(const DrawSet& set, bool lane_by_lane)
+    : set_(&set), n_(set.draws.size()), lane_by_lane_(lane_by_lane) {
     // As price_wave: a machine's lockstep events (its shader traversal loop)
     // leave the RT unit and are priced at the wave's slowest lane.
     const std::vector<Event>& loop = set.base->execution.lockstep_events;
@@ -44,9 +50,12 @@ WaveDrawPricer::WaveDrawPricer(const DrawSet& set) : set_(&set), n_(set.draws.si
     for (std::vector<double>* v : {&shader_max_, &loop_max_, &rt_max_, &rt_sum_, &lane_}) v->assign(n_, 0.0);
 }
 
-void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum) {
+// Each lane's row (fixed sum, then its counts of the changed events) and the
+// undominated rows among them, in cand_ (stride doubles per row), and the
+// rows' sum over the wave in counts_.
+void WaveDrawPricer::undominated_rows(const WaveWork& wave, const Unit& u) {
     const CostModel& base = *set_->base;
-    const std::size_t n = n_, k_count = u.changed.size(), stride = k_count + 1;
+    const std::size_t k_count = u.changed.size(), stride = k_count + 1;
     cand_.clear();
     counts_.assign(stride, 0.0);  // the wave's sums: fixed, then each changed event
     double row[kEventCount + 1];  // one lane: fixed sum, then its changed counts
@@ -69,6 +78,83 @@ void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* ma
             else c += stride;
         cand_.insert(cand_.end(), row, row + stride);
     }
+}
+
+#if defined(__AVX2__)
+// undominated_rows() for rows of at most 8 doubles, two AVX registers each:
+// the counts gathered in one instruction and rows compared whole. The same
+// rows (the fixed sum added in the same order), sums and candidates in the
+// same order: only the instructions differ (the head frame's traces at 200 x
+// 200 x 1: 38.8 M -> 24.4 M instructions for the rows and their prices, 3.4 %
+// of all).
+void WaveDrawPricer::undominated_rows_8(const WaveWork& wave, const Unit& u) {
+    const CostModel& base = *set_->base;
+    const std::size_t k_count = u.changed.size(), stride = k_count + 1;
+    // Lane 0 and lanes past the changed events gather nothing (0).
+    alignas(32) std::int32_t index[8] = {};
+    alignas(32) std::int32_t use[8] = {};
+    for (std::size_t k = 0; k < k_count; ++k) {
+        index[k + 1] = u.changed[k];
+        use[k + 1] = -1;
+    }
+    const __m256i idx = _mm256_load_si256(reinterpret_cast<const __m256i*>(index));
+    const __m256i mask = _mm256_load_si256(reinterpret_cast<const __m256i*>(use));
+    rows_.clear();
+    __m256d sum_lo = _mm256_setzero_pd(), sum_hi = _mm256_setzero_pd();
+    const auto covers = [](const Row8& a, __m256d b_lo, __m256d b_hi) {  // a >= b everywhere
+        const __m256d lt = _mm256_or_pd(_mm256_cmp_pd(_mm256_load_pd(a.v), b_lo, _CMP_LT_OQ),
+                                        _mm256_cmp_pd(_mm256_load_pd(a.v + 4), b_hi, _CMP_LT_OQ));
+        return _mm256_movemask_pd(lt) == 0;
+    };
+    const auto covered_by = [](__m256d a_lo, __m256d a_hi, const Row8& b) {  // a >= b everywhere
+        const __m256d lt = _mm256_or_pd(_mm256_cmp_pd(a_lo, _mm256_load_pd(b.v), _CMP_LT_OQ),
+                                        _mm256_cmp_pd(a_hi, _mm256_load_pd(b.v + 4), _CMP_LT_OQ));
+        return _mm256_movemask_pd(lt) == 0;
+    };
+    for (const LaneWork& l : wave.lanes) {
+        double fixed = 0.0;
+        for (const std::uint8_t e : u.fixed) fixed += static_cast<double>(l.counts.n[e]) * base.cycles[e];
+        const __m256i counts = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(),
+                                                           reinterpret_cast<const int*>(l.counts.n.data()), idx,
+                                                           mask, 4);
+        // [fixed sum, changed 0..2] and [changed 3..6]. Unsigned counts
+        // converted exactly: as signed after flipping the top bit, plus 2^31.
+        const __m256i flipped = _mm256_xor_si256(counts, _mm256_set1_epi32(INT32_MIN));
+        const __m256d top = _mm256_set1_pd(2147483648.0);
+        const __m256d lo = _mm256_blend_pd(
+            _mm256_add_pd(_mm256_cvtepi32_pd(_mm256_castsi256_si128(flipped)), top), _mm256_set1_pd(fixed), 1);
+        const __m256d hi = _mm256_add_pd(_mm256_cvtepi32_pd(_mm256_extracti128_si256(flipped, 1)), top);
+        sum_lo = _mm256_add_pd(sum_lo, lo);
+        sum_hi = _mm256_add_pd(sum_hi, hi);
+        bool dominated = false;
+        for (std::size_t c = 0; c < rows_.size() && !dominated; ++c) dominated = covers(rows_[c], lo, hi);
+        if (dominated) continue;
+        std::size_t kept = 0;  // drop the candidates this lane covers, keeping the others' order
+        for (std::size_t c = 0; c < rows_.size(); ++c)
+            if (!covered_by(lo, hi, rows_[c])) rows_[kept++] = rows_[c];
+        rows_.resize(kept);
+        Row8& row = rows_.emplace_back();
+        _mm256_store_pd(row.v, lo);
+        _mm256_store_pd(row.v + 4, hi);
+    }
+    alignas(32) double sums[8];
+    _mm256_store_pd(sums, sum_lo);
+    _mm256_store_pd(sums + 4, sum_hi);
+    counts_.assign(sums, sums + stride);
+    cand_.resize(rows_.size() * stride);
+    for (std::size_t c = 0; c < rows_.size(); ++c)
+        std::copy(rows_[c].v, rows_[c].v + stride, cand_.begin() + static_cast<std::ptrdiff_t>(c * stride));
+}
+#endif
+
+void WaveDrawPricer::unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum) {
+    const std::size_t n = n_, k_count = u.changed.size(), stride = k_count + 1;
+#if defined(__AVX2__)
+    if (stride <= 8 && !lane_by_lane_) undominated_rows_8(wave, u);
+    else undominated_rows(wave, u);
+#else
+    undominated_rows(wave, u);
+#endif
     if (sum) {  // over all lanes: linear in the summed counts
         for (std::size_t d = 0; d < n; ++d) sum[d] = counts_[0];
         for (std::size_t k = 0; k < k_count; ++k) {

@@ -28,7 +28,9 @@ struct DrawSet {
 // One per thread and draw set while tracing (it caches per-profile prices).
 class WaveDrawPricer {
 public:
-    explicit WaveDrawPricer(const DrawSet& set);
+    // lane_by_lane: the rows compared one double at a time, as the reference
+    // the AVX2 path is tested against (it is used anyway past 7 changed events).
+    explicit WaveDrawPricer(const DrawSet& set, bool lane_by_lane = false);
     // Adds the wave's price under draw d to totals[d], d < set.draws.size().
     void add(const WaveWork& wave, WarpTotals* totals);
 
@@ -42,6 +44,7 @@ private:
 
     const DrawSet* set_;
     std::size_t n_ = 0;  // draws
+    bool lane_by_lane_ = false;
     Unit shader_, rt_, loop_;  // loop_: the preset's lockstep events (ExecutionModel)
     std::vector<double> handoff_;       // per draw: the cost of one hand-off
     bool programs_change_ = false;
@@ -49,6 +52,14 @@ private:
     std::vector<double> profile_price_; // [id * D + d] when programs change
     // max (slowest lane) and, unless null, sum over the wave's lanes of unit u, per draw.
     void unit_prices(const WaveWork& wave, const Unit& u, double* max, double* sum);
+    // Into cand_: the rows (fixed sum, then the changed counts) of the lanes
+    // no other lane covers, in lane order; into counts_: the rows' sum.
+    void undominated_rows(const WaveWork& wave, const Unit& u);
+    void undominated_rows_8(const WaveWork& wave, const Unit& u);  // the same, rows of <= 8 (AVX2)
+    struct alignas(32) Row8 {
+        double v[8];
+    };
+    std::vector<Row8> rows_;
     // Scratch: per draw; the undominated lanes (fixed sum, then the changed counts).
     std::vector<double> shader_max_, loop_max_, rt_max_, rt_sum_, lane_, worst_, cand_, counts_;
 };
