@@ -1,6 +1,7 @@
 // Axis-aligned bounding box and the ray/box slab test the hardware performs.
 #pragma once
 
+#include "core/float_step.h"
 #include "core/ray.h"
 
 #include <algorithm>
@@ -55,8 +56,8 @@ struct Aabb {
         const double l = lo[i] - m, h = hi[i] + m;
         b.lo[i] = static_cast<float>(l);
         b.hi[i] = static_cast<float>(h);
-        if (double(b.lo[i]) > l) b.lo[i] = std::nextafter(b.lo[i], -kInfinity);
-        if (double(b.hi[i]) < h) b.hi[i] = std::nextafter(b.hi[i], kInfinity);
+        if (double(b.lo[i]) > l) b.lo[i] = float_step_down(b.lo[i]);
+        if (double(b.hi[i]) < h) b.hi[i] = float_step_up(b.hi[i]);
     }
     return b;
 }

@@ -17,6 +17,7 @@
 
 #include "core/bvh.h"
 #include "core/events.h"
+#include "core/float_step.h"
 #include "core/traverse.h"
 
 #include <glm/mat3x3.hpp>
@@ -148,7 +149,7 @@ struct DRay {
     const double tfar = std::min({tf.x, tf.y, tf.z, tmax});
     if (!(tnear <= tfar + std::abs(tfar) * 1e-12)) return kInfinity;
     float t = static_cast<float>(tnear);
-    if (static_cast<double>(t) > tnear) t = std::nextafter(t, -kInfinity);
+    if (static_cast<double>(t) > tnear) t = float_step_down(t);
     return t;
 }
 

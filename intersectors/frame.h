@@ -20,6 +20,7 @@
 // distance from the world origin.
 #pragma once
 
+#include "core/float_step.h"
 #include "core/obb.h"
 
 #include <algorithm>
@@ -78,7 +79,7 @@ inline constexpr float kObbPad = 0x1p-10f;
     for (int i = 0; i < 3; ++i) {
         const double h = std::max(ext[i] + kObbSlack * reach, floor);
         half[i] = static_cast<float>(h);
-        if (double(half[i]) < h) half[i] = std::nextafter(half[i], kInfinity);
+        if (double(half[i]) < h) half[i] = float_step_up(half[i]);
     }
     return Obb::from_frame(center, x, y, z, half).padded(kObbPad);
 }

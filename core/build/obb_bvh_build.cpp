@@ -49,8 +49,8 @@ Aabb LocalBounds::padded() const {
         const double m = std::max({std::abs(lo[i]), std::abs(hi[i]), hi[i] - lo[i]});
         const double pad = m * kUlps + std::numeric_limits<float>::min();
         float l = static_cast<float>(lo[i] - pad), h = static_cast<float>(hi[i] + pad);
-        if (static_cast<double>(l) > lo[i] - pad) l = std::nextafter(l, -kInfinity);
-        if (static_cast<double>(h) < hi[i] + pad) h = std::nextafter(h, kInfinity);
+        if (static_cast<double>(l) > lo[i] - pad) l = float_step_down(l);
+        if (static_cast<double>(h) < hi[i] + pad) h = float_step_up(h);
         b.lo[i] = l;
         b.hi[i] = h;
     }

@@ -71,8 +71,8 @@ void quantize_children(BvhEntry* child, std::uint32_t n, int bits) {
             const double lo = lo0 + std::floor((double(b.lo[axis]) - lo0) / step) * step;
             const double hi = lo0 + std::ceil((double(b.hi[axis]) - lo0) / step) * step;
             float l = static_cast<float>(lo), h = static_cast<float>(hi);
-            if (double(l) > lo) l = std::nextafter(l, -kInfinity);
-            if (double(h) < hi) h = std::nextafter(h, kInfinity);
+            if (double(l) > lo) l = float_step_down(l);
+            if (double(h) < hi) h = float_step_up(h);
             b.lo[axis] = std::min(l, b.lo[axis]);
             b.hi[axis] = std::max(h, b.hi[axis]);
         }
