@@ -8,6 +8,8 @@
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace rtc {
@@ -47,6 +49,33 @@ struct Affine {
     // their magnitude for the double roundings and rounded outward, so at
     // most an ulp of the position wider than the image.
     [[nodiscard]] Aabb box(const Aabb& b) const {
+        if (b.empty()) return {};
+        // The lowest and highest corner per axis without visiting the eight:
+        // a corner's coordinate is ((m0 p0 + m1 p1) + m2 p2) + t, each sum
+        // rounded, and a rounded sum never falls when a term rises, so the
+        // corner of each term's smaller product is the lowest (and the
+        // larger, the highest), bit for bit. A zero or non-finite result
+        // (where the corners' signed zeros or NaNs could order differently)
+        // takes the corners (box_by_corners, tested equal on both paths).
+        const glm::dmat3 m(linear);
+        const DVec3 t(translation), p0(b.lo), p1(b.hi);
+        DVec3 lo, hi;
+        for (int i = 0; i < 3; ++i) {
+            double l[3], h[3];
+            for (int j = 0; j < 3; ++j) {
+                const double a = m[j][i] * p0[j], c = m[j][i] * p1[j];
+                l[j] = std::min(a, c);
+                h[j] = std::max(a, c);
+            }
+            lo[i] = l[0] + l[1] + l[2] + t[i];
+            hi[i] = h[0] + h[1] + h[2] + t[i];
+            if (!(std::isfinite(lo[i]) && std::isfinite(hi[i]) && lo[i] != 0.0 && hi[i] != 0.0))
+                return box_by_corners(b);
+        }
+        return outward_bounds(lo, hi);
+    }
+    // The same from all eight corners, as box() was first written.
+    [[nodiscard]] Aabb box_by_corners(const Aabb& b) const {
         if (b.empty()) return {};
         const glm::dmat3 m(linear);
         const DVec3 t(translation);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -216,6 +217,32 @@ TEST_CASE("two-level: the lone identity instance's shortcut equals the instance 
                                 BuildOptions{}).lone_identity);
     CHECK_FALSE(build_two_level(blases, {make_instance(0, 0, Affine::translate({0, 0, 1e-7f}))},
                                 BuildOptions{}).lone_identity);
+}
+
+TEST_CASE("two-level: an instance's world box from the extreme corners equals the eight corners' bit for bit") {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+    const auto same = [](const Aabb& a, const Aabb& b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    std::size_t differ = 0, checked = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        Affine a;
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) a.linear[c][r] = u(rng);
+        a.translation = {u(rng) * 100.0f, u(rng), u(rng) * 1e-3f};
+        // Zeros and signed zeros in the matrix, the translation and the box
+        // (axis-aligned rotations, instances at the origin): the fallback's cases.
+        if (trial % 3 == 0) a.linear[trial % 9 / 3][trial % 3] = trial % 2 ? 0.0f : -0.0f;
+        if (trial % 5 == 0) a.translation[trial % 3] = trial % 2 ? 0.0f : -0.0f;
+        if (trial % 7 == 0) a.linear = glm::mat3(0.0f);
+        if (trial % 11 == 0) a.linear[0][0] = 3e38f;  // products overflow
+        Aabb box{{u(rng), u(rng), u(rng)}, {}};
+        box.hi = box.lo + Vec3(std::abs(u(rng)), std::abs(u(rng)), trial % 4 == 0 ? 0.0f : std::abs(u(rng)));
+        if (trial % 13 == 0) box = {{-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}};  // the masquerade's unit box
+        differ += !same(a.box(box), a.box_by_corners(box));
+        ++checked;
+    }
+    CHECK(checked == 20000);
+    CHECK(differ == 0);
 }
 
 TEST_CASE("two-level: instances made on demand build what the same instances in an array build") {
