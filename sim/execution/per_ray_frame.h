@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rtc {
@@ -72,9 +73,11 @@ private:
     Progress progress_;
 };
 
-// `tracer(CountingSink&, TraceScratch&)` makes, once per task, the function
-// `(const Ray&) -> TraceHit` that traces one ray counting into that sink: a
-// method's template instantiation, called directly (no virtual call per ray).
+// `tracer(CountingSink&, TraceScratch&, record_calls)` makes, once per task,
+// the function `(const Ray&) -> TraceHit` that traces one ray counting into
+// that sink: a method's template instantiation, called directly (no virtual
+// call per ray). `record_calls` is std::false_type here: the per-ray model
+// needs no program call's own events (the warp runner's is std::true_type).
 template <class Tracer>
 FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, const Tracer& tracer) {
     PerRayFrame f(frame, fo);
@@ -87,7 +90,7 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         // Every ray of a pixel (or of a ray-list tile) counts into one sink:
         // the per-pixel sums without a per-ray flush.
         CountingSink sink;
-        auto trace_ray = tracer(sink, f.scratch(thread));
+        auto trace_ray = tracer(sink, f.scratch(thread), std::false_type{});
         const bool record_rays = fo.record_rays, record_hits = fo.record_hits;
         const auto trace = [&](const Ray& ray) {
             const TraceHit hit = trace_ray(ray);

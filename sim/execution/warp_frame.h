@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rtc {
@@ -131,7 +132,9 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         WarpFrame::Thread& th = f.thread(thread);
         FrameResult& out = f.result();
         CountingSink sink;
-        auto trace_ray = tracer(sink, th.scratch);
+        // The tracer records each program call's profile (th.scratch.calls):
+        // an instantiation of its own, the per-ray model's has no recording.
+        auto trace_ray = tracer(sink, th.scratch, std::true_type{});
         // One ray of a lane: its own counts (the sink is cleared per ray),
         // added to the lane's (`first`: copied, so the slot needs no
         // clearing) and recorded in the wave of its bounce.

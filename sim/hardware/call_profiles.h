@@ -43,22 +43,20 @@ struct ProgramCounts {
         const std::uint8_t s = kProgramSlot[static_cast<std::size_t>(e)];
         return s == 0xFF ? 0u : n[s];
     }
+    // Once per program call: 16-byte compares, then the last 8 bytes (the
+    // 2-vector form this replaces required exactly 16 slots and had not
+    // applied since there are 20).
     [[nodiscard]] bool operator==(const ProgramCounts& o) const {
+        constexpr std::size_t kBytes = sizeof n;
+        static_assert(kBytes % 8 == 0);
+        std::size_t b = 0;
 #if defined(__SSE2__)
-        if constexpr (kProgramSlots == 16) {  // two 16-byte compares: once per program call
-            const auto* a = reinterpret_cast<const __m128i*>(n.data());
-            const auto* b = reinterpret_cast<const __m128i*>(o.n.data());
-            const __m128i eq = _mm_and_si128(_mm_cmpeq_epi8(_mm_loadu_si128(a), _mm_loadu_si128(b)),
-                                             _mm_cmpeq_epi8(_mm_loadu_si128(a + 1), _mm_loadu_si128(b + 1)));
-            return _mm_movemask_epi8(eq) == 0xFFFF;
-        }
+        __m128i eq = _mm_set1_epi8(-1);
+        for (; b + 16 <= kBytes; b += 16) eq = _mm_and_si128(eq, _mm_cmpeq_epi8(load16(b), o.load16(b)));
+        if (_mm_movemask_epi8(eq) != 0xFFFF) return false;
 #endif
-        for (std::size_t w = 0; w < kProgramSlots / 4; ++w) {
-            std::uint64_t a, b;
-            std::memcpy(&a, n.data() + 4 * w, 8);
-            std::memcpy(&b, o.n.data() + 4 * w, 8);
-            if (a != b) return false;
-        }
+        for (; b < kBytes; b += 8)
+            if (word(b) != o.word(b)) return false;
         return true;
     }
     [[nodiscard]] RayCounts ray_counts() const {
@@ -66,6 +64,18 @@ struct ProgramCounts {
         for (std::size_t k = 0; k < kProgramEventCount; ++k) c.n[kProgramEvents[k]] = n[k];
         return c;
     }
+
+private:
+    [[nodiscard]] std::uint64_t word(std::size_t byte) const {
+        std::uint64_t w;
+        std::memcpy(&w, reinterpret_cast<const char*>(n.data()) + byte, 8);
+        return w;
+    }
+#if defined(__SSE2__)
+    [[nodiscard]] __m128i load16(std::size_t byte) const {
+        return _mm_loadu_si128(reinterpret_cast<const __m128i*>(reinterpret_cast<const char*>(n.data()) + byte));
+    }
+#endif
 };
 
 // Counts a call into the ray's sink and, apart, into the call's own counts.

@@ -43,9 +43,9 @@ struct TraceOptions {
 // Per-thread scratch reused across rays (no allocation per ray).
 struct TraceScratch {
     std::vector<std::uint32_t> deferred;
-    // The SIMT model needs each program call's own events: when `profiles`
-    // is set, every call of the current ray appends its profile id to
-    // `calls` (cleared per ray).
+    // The SIMT model needs each program call's own events: a LeafPrograms
+    // that records calls (kRecordCalls) appends each call's profile id, from
+    // `profiles`, to `calls` (cleared per ray).
     CallProfiles* profiles = nullptr;
     std::vector<CallProfiles::Id> calls;
 };
@@ -68,7 +68,11 @@ inline constexpr Ops kLeafObbTest{.fma = 41, .div = 3, .branch = 2, .load = 3};
 // The leaf handling of one ray. A method's trace function calls begin(),
 // then triangle() / custom() for each primitive its traversal reaches (each
 // returns the distance of an accepted hit, or +inf), then finish().
-template <class Prim, class Sink>
+// kRecordCalls: each program call's profile is recorded for the SIMT model
+// (scratch.profiles must be set). A compile-time flag, not a runtime test,
+// so that the per-ray model's traversal is compiled without any recording
+// (a runtime branch here changed how GCC inlined the per-ray path).
+template <class Prim, class Sink, bool kRecordCalls = false>
 class LeafPrograms {
 public:
     LeafPrograms(std::span<const Prim> prims, std::span<const Triangle> triangles,
@@ -81,7 +85,7 @@ public:
         sink_.on(Event::Ray);
         best_ = {};
         scratch_.deferred.clear();
-        scratch_.calls.clear();
+        if constexpr (kRecordCalls) scratch_.calls.clear();
     }
 
     // A hardware ray/triangle test (object-space ray of the triangle's instance).
@@ -139,15 +143,15 @@ private:
 
     [[gnu::always_inline]] float run_program(std::uint32_t index, Ray ray, float tmax) {
         ray.tmax = tmax;
-        if constexpr (Sink::kCounts) {
-            if (scratch_.profiles) {  // the call's events into the ray's and apart
-                CallSink call{sink_, {}};
-                const float t = program(index, ray, call);
-                scratch_.calls.push_back(scratch_.profiles->id(call.call));
-                return t;
-            }
+        if constexpr (kRecordCalls) {  // the call's events into the ray's and apart
+            static_assert(std::is_same_v<Sink, CountingSink>, "recorded calls count into a CountingSink");
+            CallSink call{sink_, {}};
+            const float t = program(index, ray, call);
+            scratch_.calls.push_back(scratch_.profiles->id(call.call));
+            return t;
+        } else {
+            return program(index, ray, sink_);
         }
-        return program(index, ray, sink_);
     }
 
     template <class ProgramSink>

@@ -39,9 +39,11 @@ public:
                 const std::span<const Triangle> triangles(g.triangles);
                 // One LeafPrograms per frame task (its sink and scratch are the
                 // task's), not per ray: made per ray it cost 7 stores each.
-                return run_frame(workload, frame, [&](CountingSink& sink, TraceScratch& scratch) {
-                    return [this, programs = LeafPrograms<Prim, CountingSink>(p, triangles, options, scratch,
-                                                                              sink)](const Ray& ray) mutable {
+                // `record_calls` (std::true_type for the warp runner) makes
+                // a second instantiation that records each program call.
+                return run_frame(workload, frame, [&](CountingSink& sink, TraceScratch& scratch, auto record_calls) {
+                    using Programs = LeafPrograms<Prim, CountingSink, decltype(record_calls)::value>;
+                    return [this, programs = Programs(p, triangles, options, scratch, sink)](const Ray& ray) mutable {
                         return Impl::template trace<TraversalMode::Closest>(s_, programs, ray);
                     };
                 });
