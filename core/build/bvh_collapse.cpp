@@ -1,5 +1,5 @@
 // The collapse of the binary SAH tree into the wide BVH (see bvh_collapse.h),
-// serial at the top and in parallel below.
+// serial at the top and in parallel below, with no buffer of its own.
 //
 // The serial order defines the layout: a stack of inner nodes, each given the
 // next run of entries for its children when it is taken, its first inner
@@ -7,11 +7,11 @@
 // of entries right after the block of its parent's children and after its
 // earlier siblings' subtrees. So the top of the tree is walked serially down
 // to subtrees of at most `task` primitives, keeping the order in which it
-// meets their blocks and those subtrees ("pieces"); the subtrees are
-// collapsed in parallel into a scratch array, which gives their sizes; each
+// meets their blocks and those subtrees ("pieces"); the subtrees' entries
+// are counted in parallel (the collapse's choices without its writes); each
 // piece gets its offset in that order (a sum over a few hundred pieces); then
-// every subtree is copied in parallel into its run. The entries are bit for
-// bit the serial collapse's, whatever the thread count
+// every subtree is collapsed in parallel straight into its run. The entries
+// are bit for bit the serial collapse's, whatever the thread count
 // (tests/core/test_core_parallel.cpp, test_core_bvh_reference.cpp).
 #include "core/build/bvh_collapse.h"
 
@@ -64,8 +64,10 @@ BvhEntry entry_of(const BinaryNode& b) {
 }
 
 // Where a collapse puts its entries: appended to a vector (the whole tree
-// on one thread), or written from a given entry on.
+// on one thread), written from a given entry on (a subtree whose run is
+// known), or nowhere (counting a subtree's entries).
 struct Append {
+    static constexpr bool kWrites = true;
     UninitializedVector<BvhEntry>& v;
     std::uint32_t take(int k) {
         const auto first = static_cast<std::uint32_t>(v.size());
@@ -75,10 +77,18 @@ struct Append {
     BvhEntry& operator[](std::uint32_t i) { return v[i]; }
 };
 struct InPlace {
+    static constexpr bool kWrites = true;
     BvhEntry* entries;
     std::uint32_t next;
     std::uint32_t take(int k) { return std::exchange(next, next + static_cast<std::uint32_t>(k)); }
     BvhEntry& operator[](std::uint32_t i) { return entries[i]; }
+};
+struct Count {
+    static constexpr bool kWrites = false;
+    std::uint32_t next = 0;
+    std::uint32_t take(int k) { return std::exchange(next, next + static_cast<std::uint32_t>(k)); }
+    BvhEntry& operator[](std::uint32_t) { return unused; }
+    BvhEntry unused;
 };
 
 // The serial collapse of the subtree below inner binary node `root` into
@@ -100,22 +110,16 @@ std::uint32_t collapse_subtree(const BinaryNodes& nodes, std::uint32_t root, int
         const std::uint32_t count = static_cast<std::uint32_t>(k) | BvhEntry::kInnerBit;
         if (w.slot == kNone) {
             root_count = count;
-        } else {
+        } else if constexpr (Out::kWrites) {
             out[w.slot].first = first;
             out[w.slot].count = count;
         }
         for (int i = k - 1; i >= 0; --i) {
-            out[first + i] = entry_of(nodes[kids[i]]);
+            if constexpr (Out::kWrites) out[first + i] = entry_of(nodes[kids[i]]);
             if (!nodes[kids[i]].is_leaf()) work.push_back({kids[i], first + static_cast<std::uint32_t>(i)});
         }
     }
     return root_count;
-}
-
-// The first prim_ids slot below binary node b: its leftmost leaf's. O(depth).
-std::uint32_t first_primitive(const BinaryNodes& nodes, std::uint32_t b) {
-    while (!nodes[b].is_leaf()) b = nodes[b].left_or_first;
-    return nodes[b].left_or_first;
 }
 
 // Primitives below binary node b: its leaves hold one contiguous range of
@@ -173,7 +177,7 @@ void collapse_tree(const BinaryTree& tree, std::size_t primitives, int width, un
         }
         pieces.push_back(p);
     }
-    // The subtrees, biggest first.
+    // The subtrees' entries, counted biggest first.
     std::vector<std::uint32_t> tasks;
     for (std::uint32_t i = 0; i < pieces.size(); ++i)
         if (pieces[i].task) tasks.push_back(i);
@@ -183,21 +187,11 @@ void collapse_tree(const BinaryTree& tree, std::size_t primitives, int width, un
     for (std::uint32_t t = 0; t < order.size(); ++t) order[t] = t;
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return primitives_in[a] > primitives_in[b]; });
-    // Each subtree collapsed in parallel into its own part of a scratch
-    // array, with links relative to its first entry: a subtree of p
-    // primitives has at most 2 p - 2 entries (each binary node but its root
-    // is at most one entry), so 2 p slots from twice its first primitive on.
-    // Counting the entries first and writing them in place took two walks
-    // of every subtree, and so as long on two threads as one walk on one.
-    std::vector<std::uint32_t> first_prim(tasks.size()), entries_in(tasks.size()), root_count(tasks.size());
-    for (std::size_t t = 0; t < tasks.size(); ++t) first_prim[t] = first_primitive(nodes, pieces[tasks[t]].binary);
-    UninitializedVector<BvhEntry> scratch;
-    scratch.resize(2 * primitives);
+    std::vector<std::uint32_t> entries_in(tasks.size());
     parallel_for(order.size(), threads, [&](std::size_t i, unsigned) {
-        const std::uint32_t t = order[i];
-        InPlace out{scratch.data() + 2 * std::size_t{first_prim[t]}, 0};
-        root_count[t] = collapse_subtree(nodes, pieces[tasks[t]].binary, width, out);
-        entries_in[t] = out.next;
+        Count count;
+        (void)collapse_subtree(nodes, pieces[tasks[order[i]]].binary, width, count);
+        entries_in[order[i]] = count.next;
     }, 1);
     // Offsets in the serial order; the top's blocks and links.
     std::size_t next = 0;
@@ -209,7 +203,7 @@ void collapse_tree(const BinaryTree& tree, std::size_t primitives, int width, un
     }
     bvh.entries.resize(next);
     for (const Piece& p : pieces) {
-        if (p.task) continue;  // linked when its entries are copied below
+        if (p.task) continue;  // linked by its own collapse below
         BvhEntry& parent = p.parent == kNone ? bvh.root : bvh.entries[pieces[p.parent].offset + p.index];
         parent.first = p.offset;
         parent.count = p.count;
@@ -217,20 +211,14 @@ void collapse_tree(const BinaryTree& tree, std::size_t primitives, int width, un
         for (std::uint32_t i = 0; i < (p.count & ~BvhEntry::kInnerBit); ++i)
             bvh.entries[p.offset + i] = entry_of(nodes[p.kids[i]]);
     }
-    // The subtrees copied into their runs, their links made absolute.
+    // The subtrees, each straight into its run, biggest first.
     parallel_for(order.size(), threads, [&](std::size_t i, unsigned) {
-        const std::uint32_t t = order[i];
-        const Piece& p = pieces[tasks[t]];
-        const BvhEntry* from = scratch.data() + 2 * std::size_t{first_prim[t]};
-        BvhEntry* to = bvh.entries.data() + p.offset;
-        for (std::uint32_t e = 0; e < entries_in[t]; ++e) {
-            BvhEntry entry = from[e];
-            if (entry.is_inner()) entry.first += p.offset;
-            to[e] = entry;
-        }
+        const Piece& p = pieces[tasks[order[i]]];
+        InPlace out{bvh.entries.data(), p.offset};
+        const std::uint32_t count = collapse_subtree(nodes, p.binary, width, out);
         BvhEntry& parent = bvh.entries[pieces[p.parent].offset + p.index];
         parent.first = p.offset;
-        parent.count = root_count[t];
+        parent.count = count;
     }, 1);
 }
 
