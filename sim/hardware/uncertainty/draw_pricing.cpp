@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <climits>
+#include <cstdint>
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -39,6 +39,13 @@ WaveDrawPricer::WaveDrawPricer(const DrawSet& set, bool lane_by_lane)
     split_unit([&](Event e) { return event_unit(e) == EventUnit::RtUnit && !in_loop(e); }, set, rt_.fixed,
                rt_.changed, rt_.cost);
     split_unit(in_loop, set, loop_.fixed, loop_.changed, loop_.cost);
+    // undominated_rows_8's gather: changed event k into lane k + 1; lane 0
+    // (the fixed sum) and lanes past the changed events gather nothing.
+    for (Unit* u : {&shader_, &rt_, &loop_})
+        for (std::size_t k = 0; k < u->changed.size() && k + 1 < u->gather_index.size(); ++k) {
+            u->gather_index[k + 1] = u->changed[k];
+            u->gather_use[k + 1] = -1;
+        }
     for (const CostModel* m : set.draws) {
         double h = 0.0;
         for (std::size_t e = 0; e < kEventCount; ++e)
@@ -90,27 +97,16 @@ void WaveDrawPricer::undominated_rows(const WaveWork& wave, const Unit& u) {
 void WaveDrawPricer::undominated_rows_8(const WaveWork& wave, const Unit& u) {
     const CostModel& base = *set_->base;
     const std::size_t k_count = u.changed.size(), stride = k_count + 1;
-    // Lane 0 and lanes past the changed events gather nothing (0).
-    alignas(32) std::int32_t index[8] = {};
-    alignas(32) std::int32_t use[8] = {};
-    for (std::size_t k = 0; k < k_count; ++k) {
-        index[k + 1] = u.changed[k];
-        use[k + 1] = -1;
-    }
-    const __m256i idx = _mm256_load_si256(reinterpret_cast<const __m256i*>(index));
-    const __m256i mask = _mm256_load_si256(reinterpret_cast<const __m256i*>(use));
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(u.gather_index.data()));
+    const __m256i mask = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(u.gather_use.data()));
     rows_.clear();
     __m256d sum_lo = _mm256_setzero_pd(), sum_hi = _mm256_setzero_pd();
-    const auto covers = [](const Row8& a, __m256d b_lo, __m256d b_hi) {  // a >= b everywhere
-        const __m256d lt = _mm256_or_pd(_mm256_cmp_pd(_mm256_load_pd(a.v), b_lo, _CMP_LT_OQ),
-                                        _mm256_cmp_pd(_mm256_load_pd(a.v + 4), b_hi, _CMP_LT_OQ));
+    const auto covers = [](__m256d a_lo, __m256d a_hi, __m256d b_lo, __m256d b_hi) {  // a >= b everywhere
+        const __m256d lt = _mm256_or_pd(_mm256_cmp_pd(a_lo, b_lo, _CMP_LT_OQ), _mm256_cmp_pd(a_hi, b_hi, _CMP_LT_OQ));
         return _mm256_movemask_pd(lt) == 0;
     };
-    const auto covered_by = [](__m256d a_lo, __m256d a_hi, const Row8& b) {  // a >= b everywhere
-        const __m256d lt = _mm256_or_pd(_mm256_cmp_pd(a_lo, _mm256_load_pd(b.v), _CMP_LT_OQ),
-                                        _mm256_cmp_pd(a_hi, _mm256_load_pd(b.v + 4), _CMP_LT_OQ));
-        return _mm256_movemask_pd(lt) == 0;
-    };
+    const auto lo_of = [](const Row8& r) { return _mm256_load_pd(r.v); };
+    const auto hi_of = [](const Row8& r) { return _mm256_load_pd(r.v + 4); };
     for (const LaneWork& l : wave.lanes) {
         double fixed = 0.0;
         for (const std::uint8_t e : u.fixed) fixed += static_cast<double>(l.counts.n[e]) * base.cycles[e];
@@ -127,11 +123,12 @@ void WaveDrawPricer::undominated_rows_8(const WaveWork& wave, const Unit& u) {
         sum_lo = _mm256_add_pd(sum_lo, lo);
         sum_hi = _mm256_add_pd(sum_hi, hi);
         bool dominated = false;
-        for (std::size_t c = 0; c < rows_.size() && !dominated; ++c) dominated = covers(rows_[c], lo, hi);
+        for (std::size_t c = 0; c < rows_.size() && !dominated; ++c)
+            dominated = covers(lo_of(rows_[c]), hi_of(rows_[c]), lo, hi);
         if (dominated) continue;
         std::size_t kept = 0;  // drop the candidates this lane covers, keeping the others' order
         for (std::size_t c = 0; c < rows_.size(); ++c)
-            if (!covered_by(lo, hi, rows_[c])) rows_[kept++] = rows_[c];
+            if (!covers(lo, hi, lo_of(rows_[c]), hi_of(rows_[c]))) rows_[kept++] = rows_[c];
         rows_.resize(kept);
         Row8& row = rows_.emplace_back();
         _mm256_store_pd(row.v, lo);

@@ -14,6 +14,7 @@
 
 #include "sim/hardware/warp_pricing.h"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,7 @@ private:
         std::vector<std::uint8_t> fixed;    // events no draw changes: priced with the base
         std::vector<std::uint8_t> changed;  // events some draw changes
         std::vector<double> cost;           // [k * D + d]: changed event k under draw d
+        std::array<std::int32_t, 8> gather_index{}, gather_use{};  // undominated_rows_8's gather
     };
     void prepare_profiles(const CallProfiles& table);
 
