@@ -2,7 +2,7 @@
 // scenes and prints, per scene, a hash of the tree (root, entries, prim ids),
 // its node count and SAH cost, so that a faster builder can be checked to
 // give the same trees. Usage:
-//   build/bench_build [--scale S] [--repeat R] [--threads T] [--cases a,b] [--fresh-memory 1]
+//   build/bench_build [--scale S] [--repeat R] [--threads T[,T2...]] [--cases a,b] [--fresh-memory 1]
 //                     [--cluster-size K]
 // The case `fur` times the cluster method's orientation grouping instead
 // (sim/methods/common/cluster_groups.cpp, clusters of K, default 256) on the
@@ -12,6 +12,13 @@
 // S multiplies every scene's primitive count (default 1: about 1 M each);
 // wall time is the best of R builds, M prims/s per thread from it; the
 // CPU-time rate (all threads' CPU time over R builds) drifts less with load.
+// --threads takes a list (1,2): the counts' builds alternate within each of
+// the R rounds (1, 2, 1, 2, ...), so that every count meets the same
+// machine, and each count after the first prints its scaling against the
+// first, as the ratio of the best times and as the median and range of the
+// rounds' ratios (each round's builds run back to back: on a VM whose speed
+// drifts between minutes, those compare). Every count must give the same
+// tree (same hash), else bench_build exits 1.
 // Freed memory stays in the heap as in simulate (sim/util/process_memory.h),
 // so builds after the first reuse its pages; --fresh-memory 1 leaves glibc's
 // default, where every build takes fresh pages (on a VM with slow page faults
@@ -96,11 +103,12 @@ void time_grouping(double scale, int repeat, int threads, int size) {
         best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     }
-    std::printf("%-10s %9zu %9zu %12s %016llx %9.4f %12.3f %12.3f  (orientation groups of %d; clusters in the "
-                "nodes column; CPU s per grouping %.3f)\n",
+    std::printf("%-10s %9zu %9zu %12s %016llx %9.4f %12.3f %12.3f  %d thread%s (orientation groups of %d; "
+                "clusters in the nodes column; CPU s per grouping %.3f)\n",
                 "fur", caps.size(), c.count(), "-", static_cast<unsigned long long>(groups_hash(c)), best,
                 static_cast<double>(caps.size()) / best / 1e6 / threads,
-                static_cast<double>(caps.size()) * repeat / cpu / 1e6, size, cpu / repeat);
+                static_cast<double>(caps.size()) * repeat / cpu / 1e6, threads, threads == 1 ? "" : "s", size,
+                cpu / repeat);
     std::fflush(stdout);
 }
 
@@ -146,6 +154,76 @@ std::vector<Aabb> make_case(const std::string& name, double scale) {
     std::exit(2);
 }
 
+// "1,2,4": thread counts, each in [1, 1024].
+bool parse_threads(const std::string& text, std::vector<int>& out) {
+    out.clear();
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', pos), text.size());
+        const std::string item = text.substr(pos, comma - pos);
+        char* end = nullptr;
+        const long v = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || v < 1 || v > 1024) return false;
+        out.push_back(static_cast<int>(v));
+        pos = comma + 1;
+    }
+    return !out.empty();
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// `repeat` rounds, each building the tree once per thread count in turn.
+// Prints a line per count and, for each count after the first, its scaling.
+// Returns false (after saying so) when the counts' trees differ.
+bool time_builds(const std::string& name, const std::vector<Aabb>& boxes, int repeat,
+                 const std::vector<int>& thread_counts) {
+    const std::size_t k = thread_counts.size();
+    std::vector<double> best(k, 1e30), cpu(k, 0.0);
+    std::vector<std::vector<double>> seconds(k);
+    std::vector<std::uint64_t> hash(k);
+    std::vector<std::size_t> nodes(k);
+    std::vector<double> sah(k);
+    Bvh bvh;
+    for (int r = 0; r < repeat; ++r) {
+        for (std::size_t t = 0; t < k; ++t) {
+            BuildOptions o;
+            o.threads = thread_counts[t];
+            const std::clock_t c0 = std::clock();
+            const auto t0 = std::chrono::steady_clock::now();
+            bvh = build_bvh(boxes, o);
+            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            cpu[t] += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+            seconds[t].push_back(s);
+            best[t] = std::min(best[t], s);
+            if (r == 0) hash[t] = tree_hash(bvh), nodes[t] = bvh.node_count(), sah[t] = sah_cost(bvh);
+        }
+    }
+    const auto prims = static_cast<double>(boxes.size());
+    bool same = true;
+    for (std::size_t t = 0; t < k; ++t) {
+        std::printf("%-10s %9zu %9zu %12.6f %016llx %9.4f %12.3f %12.3f  %d thread%s\n", name.c_str(), boxes.size(),
+                    nodes[t], sah[t], static_cast<unsigned long long>(hash[t]), best[t],
+                    prims / best[t] / 1e6 / thread_counts[t], prims * repeat / cpu[t] / 1e6, thread_counts[t],
+                    thread_counts[t] == 1 ? "" : "s");
+        same = same && hash[t] == hash[0];
+    }
+    for (std::size_t t = 1; t < k; ++t) {
+        std::vector<double> ratio;
+        for (int r = 0; r < repeat; ++r) ratio.push_back(seconds[0][r] / seconds[t][r]);
+        std::printf("%-10s scaling %d -> %d threads: %.2fx (best times), rounds %.2fx median [%.2f-%.2f] of %d\n",
+                    name.c_str(), thread_counts[0], thread_counts[t], best[0] / best[t], median(ratio),
+                    *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end()),
+                    repeat);
+    }
+    std::fflush(stdout);
+    if (!same) std::fprintf(stderr, "bench_build: %s: the thread counts built different trees (hashes above)\n", name.c_str());
+    return same;
+}
+
 constexpr const char* kUsage =
     "bench_build: times the BVH builder alone (core/build/) and prints each tree's hash\n"
     "  --cases a,b          bundle, hair, random, triangles (capsule boxes but triangles), and fur:\n"
@@ -153,7 +231,9 @@ constexpr const char* kUsage =
     "                       configs/runs/cluster_fur20m.json (default: the four builder cases)\n"
     "  --scale S            primitives x S million (default 1; the 20 M fur is fur at --scale 20)\n"
     "  --repeat R           builds per case; wall time is the best, CPU time over all (default 5)\n"
-    "  --threads T          threads per build (default 1)\n"
+    "  --threads T[,T2...]  threads per build (default 1); with a list the counts' builds\n"
+    "                       alternate in every round and each count after the first prints\n"
+    "                       its scaling against the first (best times, and the rounds' ratios)\n"
     "  --cluster-size K     fur: primitives per cluster (default 256)\n"
     "  --fresh-memory 1     glibc's default heap: fresh pages for every build\n";
 
@@ -161,7 +241,8 @@ constexpr const char* kUsage =
 
 int main(int argc, char** argv) {
     double scale = 1.0;
-    int repeat = 5, threads = 1, cluster_size = 256;
+    int repeat = 5, cluster_size = 256;
+    std::vector<int> thread_counts{1};
     bool fresh_memory = false;
     std::string cases = "bundle,hair,random,triangles";
     for (int i = 1; i < argc; i += 2) {
@@ -173,7 +254,13 @@ int main(int argc, char** argv) {
         if (i + 1 == argc) { std::fprintf(stderr, "bench_build: %s needs a value\n", a.c_str()); return 2; }
         if (a == "--scale") scale = std::atof(argv[i + 1]);
         else if (a == "--repeat") repeat = std::max(1, std::atoi(argv[i + 1]));
-        else if (a == "--threads") threads = std::max(1, std::atoi(argv[i + 1]));
+        else if (a == "--threads") {
+            if (!parse_threads(argv[i + 1], thread_counts)) {
+                std::fprintf(stderr, "bench_build: --threads takes thread counts from 1 to 1024, e.g. 1,2; got '%s'\n",
+                             argv[i + 1]);
+                return 2;
+            }
+        }
         else if (a == "--cases") cases = argv[i + 1];
         else if (a == "--cluster-size") cluster_size = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--fresh-memory") fresh_memory = std::atoi(argv[i + 1]) != 0;
@@ -183,34 +270,19 @@ int main(int argc, char** argv) {
     if (!set_huge_pages_from_environment("bench_build")) return 2;
     std::printf("memory: %s\n", kept ? "freed memory kept in the heap (as simulate does)"
                                       : "glibc's default (fresh pages for every large array)");
-    std::printf("%-10s %9s %9s %12s %18s %9s %12s %12s\n", "case", "prims", "nodes", "SAH", "tree hash",
-                "best s", "Mprims/s/thr", "Mprims/cpu-s");
+    std::printf("%-10s %9s %9s %12s %18s %9s %12s %12s  %s\n", "case", "prims", "nodes", "SAH", "tree hash",
+                "best s", "Mprims/s/thr", "Mprims/cpu-s", "threads");
     std::size_t pos = 0;
     while (pos <= cases.size()) {
         const std::size_t comma = std::min(cases.find(',', pos), cases.size());
         const std::string name = cases.substr(pos, comma - pos);
         pos = comma + 1;
         if (name == "fur") {
-            time_grouping(scale, repeat, threads, cluster_size);
+            for (const int threads : thread_counts) time_grouping(scale, repeat, threads, cluster_size);
             continue;
         }
         const std::vector<Aabb> boxes = make_case(name, scale);
-        BuildOptions o;
-        o.threads = threads;
-        double best = 1e30, cpu = 0.0;
-        Bvh bvh;
-        for (int r = 0; r < repeat; ++r) {
-            const std::clock_t c0 = std::clock();
-            const auto t0 = std::chrono::steady_clock::now();
-            bvh = build_bvh(boxes, o);
-            best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-        }
-        const auto prims = static_cast<double>(boxes.size());
-        std::printf("%-10s %9zu %9zu %12.6f %016llx %9.4f %12.3f %12.3f\n", name.c_str(), boxes.size(),
-                    bvh.node_count(), sah_cost(bvh), static_cast<unsigned long long>(tree_hash(bvh)), best,
-                    prims / best / 1e6 / threads, prims * repeat / cpu / 1e6);
-        std::fflush(stdout);
+        if (!time_builds(name, boxes, repeat, thread_counts)) return 1;
     }
     std::printf("huge pages (RTCSIM_HUGE_PAGES): %s\n", huge_pages_summary().c_str());
 }
