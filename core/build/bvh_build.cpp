@@ -10,6 +10,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rtc {
 
@@ -39,12 +40,12 @@ Bvh build_bvh(std::span<const Aabb> boxes, const BuildOptions& options) {
         make_lanes(bvh, threads);
         return bvh;
     }
-    bvh_detail::collapse_tree(tree, n, options.width, threads, bvh);
-    // The binary nodes are done with: freed before the lanes are allocated,
-    // their pages (2 n nodes, 64 MB per 1 M primitives) serve the lanes'
-    // 60 MB instead of pages new to the process (docs/benchmark.md, issue
-    // 19 round 11: on a VM a page new to the guest cost 1.4-1.9 ms per MB).
-    bvh_detail::BinaryNodes().swap(tree.nodes);
+    // The collapse frees the binary nodes and the reference buffers' memory
+    // as it is done with them: their pages (64 MB each per 1 M primitives)
+    // serve the entries and the lanes' 60 MB instead of pages new to the
+    // process (docs/benchmark.md, issue 19 round 11: on a VM a page new to
+    // the guest cost 1.4-1.9 ms per MB).
+    bvh_detail::collapse_tree(std::move(tree), n, options.width, threads, bvh);
     // The lane blocks the traversal reads, from the finished entries, on the
     // build's threads (per 1 M primitives: 40 ms on one thread, 23 ms on two,
     // about half of it the first touch of the blocks' 60 MB). Written inside

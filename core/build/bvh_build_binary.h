@@ -5,6 +5,7 @@
 #include "core/bvh.h"
 #include "core/uninitialized.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <memory>
@@ -33,6 +34,11 @@ struct BinaryTree {
     BinaryNodes nodes;  // not all slots are used: see `count`
     std::uint32_t root = 0;
     std::size_t count = 0;          // nodes in the tree
+    // The reference buffers' memory (2 n references of 32 bytes), which the
+    // build has touched: the collapse's scratch, or freed for the entries to
+    // take (on a VM a page new to the process cost more than the walks).
+    std::unique_ptr<std::byte[]> spare;
+    std::size_t spare_bytes = 0;
 };
 
 // Builds the binary tree over `boxes` (split on their centres) on `threads`
