@@ -158,9 +158,10 @@ BinaryTree build_binary_tree(std::span<const Aabb> boxes, const BuildOptions& op
     // Bytes, in which the references are created (an array of bytes
     // implicitly creates them), so that the collapse can then place its
     // entries there.
+    static_assert(alignof(Ref) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
     const std::size_t bytes = 2 * n * sizeof(Ref);
     s.ref_memory = std::make_unique_for_overwrite<std::byte[]>(bytes);
-    Ref* const refs = std::launder(reinterpret_cast<Ref*>(s.ref_memory.get()));
+    Ref* const refs = n > 0 ? std::launder(reinterpret_cast<Ref*>(s.ref_memory.get())) : nullptr;
     s.refs = {refs, refs + n};
     const Bounds root_bounds = load(s, boxes, threads);
     BinaryTree tree;
