@@ -3,7 +3,7 @@
 // its node count and SAH cost, so that a faster builder can be checked to
 // give the same trees. Usage:
 //   build/bench_build [--scale S] [--repeat R] [--threads T[,T2...]] [--cases a,b] [--fresh-memory 1]
-//                     [--cluster-size K]
+//                     [--control 1] [--cluster-size K]
 // The case `fur` times the cluster method's orientation grouping instead
 // (sim/methods/common/cluster_groups.cpp, clusters of K, default 256) on the
 // straight fur of configs/runs/cluster_fur20m.json at S x 1 M segments (the
@@ -18,7 +18,11 @@
 // first, as the ratio of the best times and as the median and range of the
 // rounds' ratios (each round's builds run back to back: on a VM whose speed
 // drifts between minutes, those compare). Every count must give the same
-// tree (same hash), else bench_build exits 1.
+// tree (same hash), else bench_build exits 1. --control 1 adds, per count T
+// after a first count of 1, T independent 1-thread builds at once in every
+// round: T times one build's work in their time, against one build's in its
+// own, is what T threads give this job on this machine with nothing shared,
+// the ceiling for the builder's scaling.
 // Freed memory stays in the heap as in simulate (sim/util/process_memory.h),
 // so builds after the first reuse its pages; --fresh-memory 1 leaves glibc's
 // default, where every build takes fresh pages (on a VM with slow page faults
@@ -45,6 +49,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -180,10 +185,13 @@ double median(std::vector<double> v) {
 // Prints a line per count and, for each count after the first, its scaling.
 // Returns false (after saying so) when the counts' trees differ.
 bool time_builds(const std::string& name, const std::vector<Aabb>& boxes, int repeat,
-                 const std::vector<int>& thread_counts) {
+                 const std::vector<int>& thread_counts, bool control) {
     const std::size_t k = thread_counts.size();
     std::vector<double> best(k, 1e30), cpu(k, 0.0);
     std::vector<std::vector<double>> seconds(k);
+    // The control, per count T > 1 after the first: T independent 1-thread
+    // builds at once, one per thread, timed together.
+    std::vector<std::vector<double>> together(k);
     std::vector<std::uint64_t> hash(k);
     std::vector<std::size_t> nodes(k);
     std::vector<double> sah(k);
@@ -200,6 +208,15 @@ bool time_builds(const std::string& name, const std::vector<Aabb>& boxes, int re
             seconds[t].push_back(s);
             best[t] = std::min(best[t], s);
             if (r == 0) hash[t] = tree_hash(bvh), nodes[t] = bvh.node_count(), sah[t] = sah_cost(bvh);
+        }
+        for (std::size_t t = 1; control && t < k; ++t) {
+            BuildOptions one;
+            one.threads = 1;
+            std::vector<std::thread> builders;
+            const auto t0 = std::chrono::steady_clock::now();
+            for (int b = 0; b < thread_counts[t]; ++b) builders.emplace_back([&] { (void)build_bvh(boxes, one); });
+            for (std::thread& b : builders) b.join();
+            together[t].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         }
     }
     const auto prims = static_cast<double>(boxes.size());
@@ -218,6 +235,17 @@ bool time_builds(const std::string& name, const std::vector<Aabb>& boxes, int re
                     name.c_str(), thread_counts[0], thread_counts[t], best[0] / best[t], median(ratio),
                     *std::min_element(ratio.begin(), ratio.end()), *std::max_element(ratio.begin(), ratio.end()),
                     repeat);
+        if (!control || thread_counts[0] != 1) continue;
+        // T builds' work in the time `together` took, against one build's
+        // in its 1-thread time: what T threads give this job with nothing
+        // shared but the machine.
+        std::vector<double> ceiling;
+        for (int r = 0; r < repeat; ++r) ceiling.push_back(thread_counts[t] * seconds[0][r] / together[t][r]);
+        const double best_together = *std::min_element(together[t].begin(), together[t].end());
+        std::printf("%-10s control: %d 1-thread builds at once: %.2fx (best times), rounds %.2fx median [%.2f-%.2f]\n",
+                    name.c_str(), thread_counts[t], thread_counts[t] * best[0] / best_together, median(ceiling),
+                    *std::min_element(ceiling.begin(), ceiling.end()),
+                    *std::max_element(ceiling.begin(), ceiling.end()));
     }
     std::fflush(stdout);
     if (!same) std::fprintf(stderr, "bench_build: %s: the thread counts built different trees (hashes above)\n", name.c_str());
@@ -235,7 +263,10 @@ constexpr const char* kUsage =
     "                       alternate in every round and each count after the first prints\n"
     "                       its scaling against the first (best times, and the rounds' ratios)\n"
     "  --cluster-size K     fur: primitives per cluster (default 256)\n"
-    "  --fresh-memory 1     glibc's default heap: fresh pages for every build\n";
+    "  --fresh-memory 1     glibc's default heap: fresh pages for every build\n"
+    "  --control 1          with --threads 1,T: each round also times T independent 1-thread\n"
+    "                       builds at once, and prints what T threads give this job with\n"
+    "                       nothing shared but the machine (the ceiling for the scaling)\n";
 
 }  // namespace
 
@@ -243,7 +274,7 @@ int main(int argc, char** argv) {
     double scale = 1.0;
     int repeat = 5, cluster_size = 256;
     std::vector<int> thread_counts{1};
-    bool fresh_memory = false;
+    bool fresh_memory = false, control = false;
     std::string cases = "bundle,hair,random,triangles";
     for (int i = 1; i < argc; i += 2) {
         const std::string a = argv[i];
@@ -264,6 +295,7 @@ int main(int argc, char** argv) {
         else if (a == "--cases") cases = argv[i + 1];
         else if (a == "--cluster-size") cluster_size = std::max(1, std::atoi(argv[i + 1]));
         else if (a == "--fresh-memory") fresh_memory = std::atoi(argv[i + 1]) != 0;
+        else if (a == "--control") control = std::atoi(argv[i + 1]) != 0;
         else { std::fprintf(stderr, "bench_build: unknown option %s\n", a.c_str()); return 2; }
     }
     const bool kept = !fresh_memory && keep_freed_memory();
@@ -282,7 +314,7 @@ int main(int argc, char** argv) {
             continue;
         }
         const std::vector<Aabb> boxes = make_case(name, scale);
-        if (!time_builds(name, boxes, repeat, thread_counts)) return 1;
+        if (!time_builds(name, boxes, repeat, thread_counts, control)) return 1;
     }
     std::printf("huge pages (RTCSIM_HUGE_PAGES): %s\n", huge_pages_summary().c_str());
 }
