@@ -8,10 +8,11 @@
 #include "sim/methods/method.h"
 #include "sim/workload/camera.h"
 
+#include "warp_test_util.h"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
@@ -196,19 +197,14 @@ CostModel random_model(std::mt19937& rng, double rt_parallel, bool lockstep) {
     return m;
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using rtc::test::same_bits;
 
 }  // namespace
 
 TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
     std::mt19937 rng(39);
     CallProfiles table;
-    std::vector<ProgramCounts> calls;
-    for (int k = 0; k < 12; ++k) {
-        ProgramCounts c;
-        for (const std::uint8_t e : kProgramEvents) c.n[kProgramSlot[e]] = static_cast<std::uint16_t>(rng() % 40);
-        calls.push_back(c);
-    }
+    const std::vector<ProgramCounts> calls = rtc::test::random_program_calls(rng, 12);
     int checked = 0;
     for (int trial = 0; trial < 400; ++trial) {
         const double parallel = std::array{1.0, 4.0, 32.0, 2.5}[trial % 4];

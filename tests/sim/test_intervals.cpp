@@ -9,9 +9,10 @@
 #include "sim/run/simulation.h"
 #include "sim/util/json_file.h"
 
+#include "warp_test_util.h"
+
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -131,13 +132,8 @@ TEST_CASE("draw pricing: rows compared on AVX lanes give the lane-by-lane refere
     std::mt19937 rng(27);
     std::uniform_real_distribution<double> cost(0.0, 300.0);
     CallProfiles table;
-    std::vector<ProgramCounts> calls;
-    for (int k = 0; k < 8; ++k) {
-        ProgramCounts c;
-        for (const std::uint8_t e : kProgramEvents) c.n[kProgramSlot[e]] = static_cast<std::uint16_t>(rng() % 40);
-        calls.push_back(c);
-    }
-    const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    const std::vector<ProgramCounts> calls = rtc::test::random_program_calls(rng, 8);
+    using rtc::test::same_bits;
     int compared = 0;
     for (int trial = 0; trial < 200; ++trial) {
         CostModel base;
