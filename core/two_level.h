@@ -13,6 +13,7 @@
 #include "core/traverse.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -97,20 +98,42 @@ struct PrimitiveQuery {
 // zeros zi (core/instance_box.h's order): exact for finite components, except
 // that -0 plus a +0 is +0. So: every origin and direction component finite and none
 // -0 (camera and bounce rays nearly always are).
-[[nodiscard, gnu::always_inline]] inline bool passes_identity(const Ray& ray) {
+[[nodiscard]] inline bool passes_identity_reference(const Ray& ray) {
+    const auto ok = [](float x) { return std::isfinite(x) && !(x == 0.0f && std::signbit(x)); };
+    return ok(ray.origin.x) && ok(ray.origin.y) && ok(ray.origin.z) && ok(ray.direction.x) &&
+           ok(ray.direction.y) && ok(ray.direction.z);
+}
+
 #if defined(__SSE2__)
-    const __m128 o = load3(ray.origin), d = load3(ray.direction);
+// The ray as two 16-byte loads: (origin, tmin) and (direction, tmax). One
+// load each instead of load3's three instructions; lane 3 is ignored by every
+// use below (core/box_lanes.h's box test reads lanes 0-2 only).
+struct RayLanes {
+    __m128 origin_tmin, direction_tmax;
+    explicit RayLanes(const Ray& ray)
+        : origin_tmin(_mm_loadu_ps(&ray.origin.x)), direction_tmax(_mm_loadu_ps(&ray.direction.x)) {
+        static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
+    }
+};
+
+// passes_identity_reference() on the lanes, for lanes 0-2 of both vectors.
+[[nodiscard, gnu::always_inline]] inline bool passes_identity(const RayLanes& r) {
+    const __m128 o = r.origin_tmin, d = r.direction_tmax;
     const __m128 zero = _mm_setzero_ps();
     // x - x is 0 for finite x and NaN for an infinity or NaN.
     const __m128 finite = _mm_and_ps(_mm_cmpeq_ps(_mm_sub_ps(o, o), zero), _mm_cmpeq_ps(_mm_sub_ps(d, d), zero));
     const __m128i minus_zero = _mm_set1_epi32(static_cast<int>(0x80000000u));
     const __m128i neg0 = _mm_or_si128(_mm_cmpeq_epi32(_mm_castps_si128(o), minus_zero),
                                       _mm_cmpeq_epi32(_mm_castps_si128(d), minus_zero));
-    return _mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(neg0), finite)) == 0xF;
+    return (_mm_movemask_ps(_mm_andnot_ps(_mm_castsi128_ps(neg0), finite)) & 0x7) == 0x7;
+}
+#endif
+
+[[nodiscard, gnu::always_inline]] inline bool passes_identity(const Ray& ray) {
+#if defined(__SSE2__)
+    return passes_identity(RayLanes(ray));
 #else
-    const auto ok = [](float x) { return std::isfinite(x) && !(x == 0.0f && std::signbit(x)); };
-    return ok(ray.origin.x) && ok(ray.origin.y) && ok(ray.origin.z) && ok(ray.direction.x) &&
-           ok(ray.direction.y) && ok(ray.direction.z);
+    return passes_identity_reference(ray);
 #endif
 }
 
@@ -149,15 +172,32 @@ template <TraversalMode Mode, class PrimFn>
 // transform, one reciprocal of the direction. Inlined into the tracer: GCC
 // stopped inlining it once each method compiled a second tracer (the warp
 // model's), and the call cost case 2 ref per-ray 15 instructions per ray.
+// With SSE it takes the ray's lanes that passes_identity() loaded: the
+// reciprocal and the root's box test use them as they are (case 2 ref: N
+// fewer instructions per ray than three-instruction loads of each Vec3).
 template <TraversalMode Mode, class Sink, class PrimFn>
-[[gnu::always_inline]] inline float trace_lone_identity(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn& on_prim) {
+[[gnu::always_inline]] inline float trace_lone_identity(const TwoLevel& scene, const Ray& ray,
+#if defined(__SSE2__)
+                                                        const RayLanes& lanes,
+#endif
+                                                        Sink& sink, PrimFn& on_prim) {
     if (Mode == TraversalMode::Closest && ray.tmin > ray.tmax) return kInfinity;
     sink.on(kTlasEvents.node_visit);
     sink.add(kTlasEvents.box_test, 1);
-    const Vec3 inv_dir = safe_inverse_fast(ray.direction);
     const BvhEntry& leaf = scene.tlas.entries[scene.tlas.root.first];
+#if defined(__SSE2__)
+    // Lanes 0-2 are safe_inverse_fast(ray.direction)'s; lane 3 (of tmax) is unused.
+    const __m128 inv = safe_inverse_lanes(lanes.direction_tmax);
+    const float entry = intersect_box_lanes(leaf.box, lanes.origin_tmin, inv, ray.tmin, ray.tmax);
+#else
+    const Vec3 inv_dir = safe_inverse_fast(ray.direction);
     const float entry = intersect_lone_box(leaf.box, ray.origin, inv_dir, ray.tmin, ray.tmax);
+#endif
     if (entry == kInfinity || (Mode == TraversalMode::Closest && entry > ray.tmax)) return kInfinity;
+#if defined(__SSE2__)
+    Vec3 inv_dir;
+    store3(inv, inv_dir);
+#endif
     const std::uint32_t index = leaf.first;  // the leaf ids are the identity (TwoLevel::instances)
     const TlasInstance& inst = scene.instances[index];
     sink.on(Event::InstanceTransform);
@@ -238,8 +278,15 @@ float trace_two_level_with(const TwoLevel& scene, const Ray& ray, Sink& sink, Pr
 
 template <TraversalMode Mode, class Sink, class PrimFn>
 float trace_two_level(const TwoLevel& scene, const Ray& ray, Sink& sink, PrimFn&& on_prim) {
+#if defined(__SSE2__)
+    if (scene.lone_identity) {
+        const RayLanes lanes(ray);
+        if (passes_identity(lanes)) return detail::trace_lone_identity<Mode>(scene, ray, lanes, sink, on_prim);
+    }
+#else
     if (scene.lone_identity && passes_identity(ray))
         return detail::trace_lone_identity<Mode>(scene, ray, sink, on_prim);
+#endif
     // The BLAS traversal stays a function of its own: inlined into the TLAS
     // leaf (inlined itself) it cost case 1 ref 7 % more instructions.
     return detail::trace_instances<Mode, true>(

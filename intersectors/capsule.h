@@ -56,10 +56,11 @@ namespace detail {
 
 // The capsule's nearest hit once the cheap rejects have passed, from the ray
 // around the capsule's centre (its reject test's parts: no recomputation).
-// A call of its own: inlined, its registers made every rejected call dearer
-// (case 1 ref, 83 calls per ray, mostly rejected: +2.4 % per ray).
-[[gnu::noinline]] inline std::optional<Hit> capsule_hit(const Ray& ray, const LocalRay& lr, const DVec3& a,
-                                                      const DVec3& ba, double len2, double r) {
+// Always inside a call of its own (capsule_hit, capsule_hit_lanes): inlined
+// into the rejects, its registers made every rejected call dearer (case 1
+// ref, 83 calls per ray, mostly rejected: +2.4 % per ray).
+[[gnu::always_inline]] inline std::optional<Hit> capsule_solve(const Ray& ray, const LocalRay& lr, const DVec3& a,
+                                                             const DVec3& ba, double len2, double r) {
     Span span = hull(sphere_span(lr, a, r, 1), sphere_span(lr, -a, r, 2));
     DVec3 w(0.0);
     if (len2 > 0.0) {
@@ -79,6 +80,11 @@ namespace detail {
     const double nn = glm::dot(n, n);
     const Vec3 normal = nn > 0.0 ? Vec3(n / std::sqrt(nn)) : Vec3(0.0f, 0.0f, 1.0f);
     return Hit{hit.t, normal, static_cast<float>(u)};
+}
+
+[[gnu::noinline]] inline std::optional<Hit> capsule_hit(const Ray& ray, const LocalRay& lr, const DVec3& a,
+                                                      const DVec3& ba, double len2, double r) {
+    return capsule_solve(ray, lr, a, ba, len2, r);
 }
 
 // The numbers the capsule's cheap rejects and its hit are made of, in double:
@@ -142,11 +148,13 @@ struct CapsuleLanes {
 
 // capsule_hit from the lanes: a call of its own that takes the vectors in
 // registers, so that the rejects' path keeps no 32-byte vector in memory
-// (as an aligned stack slot it cost every call a realigned frame).
+// (as an aligned stack slot it cost every call a realigned frame). The solve
+// is inlined here: as a second call (capsule_hit) it cost case 2 ref, whose
+// programs mostly pass the rejects, N instructions per ray.
 [[gnu::noinline]] inline std::optional<Hit> capsule_hit_lanes(const Ray& ray, __m256d a, __m256d ba, __m256d d,
                                                              __m256d oc, double dd, double od, double len2,
                                                              double r) {
-    return capsule_hit(ray, local_ray(to_dvec3(d), to_dvec3(oc), dd, od), to_dvec3(a), to_dvec3(ba), len2, r);
+    return capsule_solve(ray, local_ray(to_dvec3(d), to_dvec3(oc), dd, od), to_dvec3(a), to_dvec3(ba), len2, r);
 }
 
 [[nodiscard, gnu::always_inline]] inline CapsuleLanes capsule_frame_lanes(const Capsule& cap, const Ray& ray) {

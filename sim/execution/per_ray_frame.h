@@ -106,6 +106,9 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
             // pixel and per sample.
             const auto width = static_cast<std::uint32_t>(out.width);
             const std::uint32_t spp = frame.path.spp;
+            // The path options copied into the task's frame: through the
+            // workload's reference, every sample reloaded them via two pointers.
+            const PathOptions path = frame.path;
             const CameraLanes& cam = f.camera();
             RayCounts* const row_counts = out.pixel_counts.data() + static_cast<std::size_t>(py) * width;
             Vec3* const row_radiance = out.radiance.data() + static_cast<std::size_t>(py) * width;
@@ -113,7 +116,7 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
                 sink.ray.clear();
                 Vec3 sum{0.0f};
                 for (std::uint32_t s = 0; s < spp; ++s)
-                    sum += trace_path(cam, px, py, s, frame.path,
+                    sum += trace_path(cam, px, py, s, path,
                                       [&](const Ray& ray, std::uint32_t) { return trace(ray); })
                                .radiance;
                 row_counts[px].copy_from(sink.ray);

@@ -155,7 +155,7 @@ private:
     }
 
     template <class ProgramSink>
-    float program(std::uint32_t index, const Ray& ray, ProgramSink& sink) {
+    [[gnu::always_inline]] float program(std::uint32_t index, const Ray& ray, ProgramSink& sink) {
         if (!leaf_obbs_.empty()) {
             // The same float operations as the hardware's instance transform +
             // unit-box test of the masquerade (obb), so the same rays pass.

@@ -194,6 +194,10 @@ TEST_CASE("two-level: the lone identity instance's shortcut equals the instance 
                           &ray.direction.x, &ray.direction.y, &ray.direction.z};
             *f[r % 6] = specials[(r / 6) % 5];
             if (r % 3 == 0) *f[(r / 30) % 6] = specials[(r / 7) % 5];
+            // tmin and tmax share the 16-byte loads of origin and direction
+            // (RayLanes): their values must not change which path a ray takes.
+            if (r % 4 == 1) ray.tmin = specials[(r / 4) % 5];
+            if (r % 5 == 2) ray.tmax = specials[(r / 5) % 5];
             rays.push_back(ray);
         }
         int shortcut = 0, hits = 0;
@@ -202,6 +206,7 @@ TEST_CASE("two-level: the lone identity instance's shortcut equals the instance 
             std::vector<std::array<std::uint32_t, 8>> ca, cb;
             const float ta = run(fast, ray, a, ca), tb = run(general, ray, b, cb);
             shortcut += passes_identity(ray);
+            CHECK(passes_identity(ray) == passes_identity_reference(ray));
             hits += ta < kInfinity;
             CHECK(std::memcmp(&ta, &tb, sizeof ta) == 0);
             CHECK(a.ray.n == b.ray.n);
