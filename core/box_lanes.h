@@ -10,6 +10,7 @@
 #include "core/aabb.h"
 #include "core/ray.h"
 
+#include <cstddef>
 #include <cstring>
 
 #if defined(__SSE2__)
@@ -46,8 +47,17 @@ namespace rtc {
 // lanes 0-2 (lane 3 is ignored).
 [[nodiscard, gnu::always_inline]] inline float intersect_box_lanes(const Aabb& box, __m128 o, __m128 inv,
                                                                   float tmin, float tmax) {
-    const __m128 t0 = _mm_mul_ps(_mm_sub_ps(load3(box.lo), o), inv);
-    const __m128 t1 = _mm_mul_ps(_mm_sub_ps(load3(box.hi), o), inv);
+    // Each corner in one 16-byte load (load3 is three instructions): lo from
+    // the box's first 16 bytes (lane 3 is hi.x), hi from the 16 bytes ending
+    // with it, rotated (lane 3 is lo.z). Both stay inside the box; lane 3 is
+    // ignored below.
+    static_assert(offsetof(Aabb, lo) == 0 && offsetof(Aabb, hi) == 12 && sizeof(Aabb) == 24);
+    const char* const bytes = reinterpret_cast<const char*>(&box);
+    const __m128 lo_hx = _mm_loadu_ps(reinterpret_cast<const float*>(bytes));
+    const __m128 lz_hi = _mm_loadu_ps(reinterpret_cast<const float*>(bytes + 8));
+    const __m128 hi_lz = _mm_shuffle_ps(lz_hi, lz_hi, _MM_SHUFFLE(0, 3, 2, 1));
+    const __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo_hx, o), inv);
+    const __m128 t1 = _mm_mul_ps(_mm_sub_ps(hi_lz, o), inv);
     // std::min(a, b) is _mm_min_ps(b, a) and std::max(a, b) is _mm_max_ps(b, a).
     const __m128 lo = _mm_min_ps(t1, t0), hi = _mm_max_ps(t1, t0);  // per axis: min(t0, t1), max(t0, t1)
     const __m128 lo_y = _mm_shuffle_ps(lo, lo, _MM_SHUFFLE(1, 1, 1, 1));

@@ -71,6 +71,7 @@ using LaneTmax = float;
 struct alignas(16) LaneConstants {
     float slab_pad[4];
     float infinity[4];
+    float minus_zero[4];  // -0.0f: its bits (0x80000000) for integer compares
 };
 extern const LaneConstants kLaneConstants;
 

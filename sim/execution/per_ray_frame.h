@@ -92,11 +92,14 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
         CountingSink sink;
         auto trace_ray = tracer(sink, f.scratch(thread), std::false_type{});
         const bool record_rays = fo.record_rays, record_hits = fo.record_hits;
+        const bool record = record_rays || record_hits;  // one test per ray when neither
         const auto trace = [&](const Ray& ray) {
             const TraceHit hit = trace_ray(ray);
             ++rays_traced;
-            if (record_rays) t.rays.push_back(ray);
-            if (record_hits) t.hits.push_back(hit);
+            if (record) {
+                if (record_rays) t.rays.push_back(ray);
+                if (record_hits) t.hits.push_back(hit);
+            }
             return hit;
         };
         if (frame.from_camera) {

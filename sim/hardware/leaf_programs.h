@@ -77,14 +77,16 @@ class LeafPrograms {
 public:
     LeafPrograms(std::span<const Prim> prims, std::span<const Triangle> triangles,
                  const TraceOptions& options, TraceScratch& scratch, Sink& sink)
-        : prims_(prims), triangles_(triangles), options_(options), scratch_(scratch), sink_(sink) {}
+        : prims_(prims), triangles_(triangles), options_(options), scratch_(scratch), sink_(sink),
+          deferred_(options.schedule == IsSchedule::Deferred) {
+        scratch_.deferred.clear();  // emptied by every finish() after this
+    }
 
     [[nodiscard]] Sink& sink() { return sink_; }
 
     void begin() {
         sink_.on(Event::Ray);
         best_ = {};
-        scratch_.deferred.clear();
         if constexpr (kRecordCalls) scratch_.calls.clear();
     }
 
@@ -99,7 +101,7 @@ public:
     // `index`'s program with `ray` (now, or after traversal when deferred).
     float custom(std::uint32_t index, const Ray& ray, float tmax) {
         sink_.on(Event::ContextSwitch);
-        if (options_.schedule == IsSchedule::Deferred) {
+        if (deferred_) {
             scratch_.deferred.push_back(index);
             return kInfinity;
         }
@@ -126,12 +128,17 @@ public:
         }
     }
 
-    // Runs the deferred programs (world-space ray) and returns the closest hit.
+    // Runs the deferred programs (world-space ray) and returns the closest
+    // hit. The list is emptied here, not in begin(), and only read under the
+    // deferred schedule: an immediate ray tests one flag.
     template <TraversalMode Mode>
     TraceHit finish(const Ray& ray) {
-        for (const std::uint32_t index : scratch_.deferred)
-            run_program(index, ray,
-                        Mode == TraversalMode::Closest ? std::min(best_.t, ray.tmax) : ray.tmax);
+        if (deferred_ && !scratch_.deferred.empty()) {
+            for (const std::uint32_t index : scratch_.deferred)
+                run_program(index, ray,
+                            Mode == TraversalMode::Closest ? std::min(best_.t, ray.tmax) : ray.tmax);
+            scratch_.deferred.clear();
+        }
         return best_;
     }
 
@@ -177,6 +184,9 @@ private:
     const TraceOptions& options_;
     TraceScratch& scratch_;
     Sink& sink_;
+    // options_.schedule == Deferred, read per program call without going
+    // through the options' reference.
+    bool deferred_;
     TraceHit best_;
     std::span<const CentredAffine> leaf_obbs_;
 };
