@@ -117,14 +117,18 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
             Vec3* const row_radiance = out.radiance.data() + static_cast<std::size_t>(py) * width;
             for (std::uint32_t px = 0; px < width; ++px) {
                 sink.ray.clear();
-                Vec3 sum{0.0f};
+                // The samples summed in the pixel's own slot: a sum of the
+                // loop's own lived in the stack frame anyway (the traces'
+                // calls clobber every vector register) and was copied out.
+                Vec3& sum = row_radiance[px];
+                sum = Vec3{0.0f};
                 for (std::uint32_t s = 0; s < spp; ++s)
                     sum += trace_path(cam, px, py, s, path,
                                       [&](const Ray& ray, std::uint32_t) { return trace(ray); })
                                .radiance;
                 row_counts[px].copy_from(sink.ray);
                 // x / 1 is x: one sample per pixel skips the division.
-                row_radiance[px] = spp == 1 ? sum : sum / static_cast<float>(spp);
+                if (spp != 1) sum /= static_cast<float>(spp);
             }
             // The row's sum, read back from its pixels: cheaper than a 64-bit
             // add per pixel (EventTotals::add_all says why it is exact).
