@@ -153,11 +153,12 @@ namespace detail {
 template <TraversalMode Mode, class PrimFn>
 [[gnu::always_inline]] inline auto blas_leaf(const TlasInstance& inst, const std::uint32_t& index, const Bvh& blas,
                                              const Ray& ray, const Ray& object_ray, PrimFn& on_prim) {
-    return [&inst, &index, &blas, &ray, &object_ray, &on_prim](std::uint32_t first, std::uint32_t count,
-                                                              float tmax) __attribute__((always_inline)) {
+    // The leaf ids' array by value: one load fewer per primitive than through blas.
+    return [&inst, index, ids = blas.prim_ids.data(), &ray, &object_ray, &on_prim](
+               std::uint32_t first, std::uint32_t count, float tmax) __attribute__((always_inline)) {
         float best = kInfinity;
         for (std::uint32_t j = 0; j < count; ++j) {
-            const PrimitiveQuery q{inst, index, blas.prim_ids[first + j], ray, object_ray, tmax};
+            const PrimitiveQuery q{inst, index, ids[first + j], ray, object_ray, tmax};
             const float t = on_prim(q);
             if (t < best) best = t;
             if (Mode == TraversalMode::Closest && t < tmax) tmax = t;
