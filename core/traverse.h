@@ -127,12 +127,14 @@ extern const LaneConstants kLaneConstants;
 #endif
 }
 
-template <TraversalMode Mode, LevelEvents Level, class Sink, class LeafFn>
+// kMayBeOneLeaf = false: the caller knows the root is not over one leaf
+// (TwoLevel::lone_identity's BLAS), and its test is skipped.
+template <TraversalMode Mode, LevelEvents Level, bool kMayBeOneLeaf = true, class Sink, class LeafFn>
 float traverse(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tmin, float tmax,
                Sink& sink, LeafFn&& on_leaf) {
     if (Mode == TraversalMode::Closest && tmin > tmax) return kInfinity;  // the root is culled
     const BvhEntry* entries = bvh.entries.data();
-    if (bvh.root.count == (BvhEntry::kInnerBit | 1u) && !entries[bvh.root.first].is_inner()) {
+    if (kMayBeOneLeaf && bvh.root.count == (BvhEntry::kInnerBit | 1u) && !entries[bvh.root.first].is_inner()) {
         // A root over one leaf (the masquerade's unit-box BLAS): the same
         // events and tests as the loop below, without its stack.
         sink.on(Level.node_visit);

@@ -206,7 +206,9 @@ template <TraversalMode Mode, class Sink, class PrimFn>
     sink.on(Event::InstanceTransform);
     const Bvh& blas = scene.blases[inst.blas];
     const auto on_blas_leaf = blas_leaf<Mode>(inst, index, blas, ray, ray, on_prim);
-    const float t = traverse<Mode, kBlasEvents>(blas, ray.origin, inv_dir, ray.tmin, ray.tmax, sink, on_blas_leaf);
+    // lone_identity's BLAS is not a root over one leaf: traverse() skips that test.
+    const float t =
+        traverse<Mode, kBlasEvents, false>(blas, ray.origin, inv_dir, ray.tmin, ray.tmax, sink, on_blas_leaf);
     return t < kInfinity ? t : kInfinity;
 }
 
