@@ -38,12 +38,14 @@ struct LocalRay {
 
 // From its parts, for a caller that has them already: d, oc = origin - c,
 // dd = d.d and od = oc.d.
-[[nodiscard]] inline LocalRay local_ray(const DVec3& d, const DVec3& oc, double dd, double od) {
+// Always inlined: once GCC kept local_ray(ray, c) out of line, the
+// cylinder program (fig3_bundles' ref) ran 7 % more instructions.
+[[nodiscard, gnu::always_inline]] inline LocalRay local_ray(const DVec3& d, const DVec3& oc, double dd, double od) {
     const double t0 = dd > 0.0 ? -od / dd : 0.0;
     return {oc + t0 * d, d, dd, t0};
 }
 
-[[nodiscard]] inline LocalRay local_ray(const Ray& ray, const DVec3& c) {
+[[nodiscard, gnu::always_inline]] inline LocalRay local_ray(const Ray& ray, const DVec3& c) {
     const DVec3 d(ray.direction);
     const DVec3 oc = DVec3(ray.origin) - c;
     return local_ray(d, oc, glm::dot(d, d), glm::dot(oc, d));

@@ -21,7 +21,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <utility>
 
@@ -87,6 +89,22 @@ struct PathSample {
     return p + facing * (ray_offset * scale);
 }
 
+// ray = (origin, tmin 0, direction, tmax +inf). With SSE in two 16-byte
+// stores, (origin, 0) and (direction, +inf): the trace loads the ray as two
+// 16-byte vectors (core/two_level.h's RayLanes), and a load that spans the
+// separate stores of fields cannot take its data from the store buffer.
+[[gnu::always_inline]] inline void set_ray(Ray& ray, const Vec3& origin, const Vec3& direction) {
+#if defined(__SSE2__)
+    static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
+    const __m128 o = _mm_setr_ps(origin.x, origin.y, origin.z, 0.0f);
+    const __m128 d = _mm_setr_ps(direction.x, direction.y, direction.z, kInfinity);
+    std::memcpy(reinterpret_cast<char*>(&ray), &o, 16);
+    std::memcpy(reinterpret_cast<char*>(&ray) + 16, &d, 16);
+#else
+    ray = {origin, 0.0f, direction, kInfinity};
+#endif
+}
+
 // Traces one path from the camera ray of (px, py, sample). `trace(ray, depth)`
 // returns the closest hit (depth 0 = camera ray).
 template <class TraceFn>
@@ -127,11 +145,9 @@ template <class TraceFn>
         }
         const Vec3 p = ray.at(hit.t);
         const float distance = hit.t * glm::length(ray.direction);
-        ray.origin = offset_origin(p, facing, distance, opt.ray_offset);
-        ray.direction = cosine_direction(facing, rng->uniform(rng_dim::bounce(depth, 0)),
-                                         rng->uniform(rng_dim::bounce(depth, 1)));
-        ray.tmin = 0.0f;
-        ray.tmax = kInfinity;
+        set_ray(ray, offset_origin(p, facing, distance, opt.ray_offset),
+                cosine_direction(facing, rng->uniform(rng_dim::bounce(depth, 0)),
+                                 rng->uniform(rng_dim::bounce(depth, 1))));
     }
     return out;
 }
