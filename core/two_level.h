@@ -176,7 +176,7 @@ template <TraversalMode Mode, class PrimFn>
 // stopped inlining it once each method compiled a second tracer (the warp
 // model's), and the call cost case 2 ref per-ray 15 instructions per ray.
 // With SSE it takes the ray's lanes that passes_identity() loaded: the
-// reciprocal and the root's box test use them as they are (case 2 ref: N
+// reciprocal and the root's box test use them as they are (case 2 ref: 15
 // fewer instructions per ray than three-instruction loads of each Vec3).
 template <TraversalMode Mode, class Sink, class PrimFn>
 [[gnu::always_inline]] inline float trace_lone_identity(const TwoLevel& scene, const Ray& ray,

@@ -150,7 +150,7 @@ struct CapsuleLanes {
 // registers, so that the rejects' path keeps no 32-byte vector in memory
 // (as an aligned stack slot it cost every call a realigned frame). The solve
 // is inlined here: as a second call (capsule_hit) it cost case 2 ref, whose
-// programs mostly pass the rejects, N instructions per ray.
+// programs mostly pass the rejects, 11 instructions per ray.
 [[gnu::noinline]] inline std::optional<Hit> capsule_hit_lanes(const Ray& ray, __m256d a, __m256d ba, __m256d d,
                                                              __m256d oc, double dd, double od, double len2,
                                                              double r) {

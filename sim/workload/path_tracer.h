@@ -27,6 +27,10 @@
 #include <optional>
 #include <utility>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace rtc {
 
 // Sky light seen by escaping rays: a vertical gradient from `bottom` (looking
