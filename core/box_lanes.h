@@ -35,6 +35,26 @@ namespace rtc {
     v.z = _mm_cvtss_f32(_mm_movehl_ps(x, x));
 }
 
+// A Ray as two 16-byte vectors, (origin, tmin) and (direction, tmax): one
+// load or store each, where load3/store3 take three instructions per Vec3.
+// A 16-byte load is forwarded from the store buffer only when one store
+// wrote all of it, so rays that are loaded this way (core/two_level.h's
+// identity path) are written with store_ray.
+static_assert(offsetof(Ray, origin) == 0 && offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 &&
+              offsetof(Ray, tmax) == 28 && sizeof(Ray) == 32);
+struct RayLanes {
+    __m128 origin_tmin, direction_tmax;
+    explicit RayLanes(const Ray& ray)
+        : origin_tmin(_mm_loadu_ps(reinterpret_cast<const float*>(&ray))),
+          direction_tmax(_mm_loadu_ps(reinterpret_cast<const float*>(&ray) + 4)) {}
+};
+
+// The ray (origin_tmin, direction_tmax) written in two 16-byte stores.
+[[gnu::always_inline]] inline void store_ray(__m128 origin_tmin, __m128 direction_tmax, Ray& ray) {
+    std::memcpy(reinterpret_cast<char*>(&ray), &origin_tmin, 16);
+    std::memcpy(reinterpret_cast<char*>(&ray) + 16, &direction_tmax, 16);
+}
+
 // safe_inverse() on lanes: 1 / d, and +-1e30 (the sign of the zero) where d == 0.
 [[nodiscard, gnu::always_inline]] inline __m128 safe_inverse_lanes(__m128 d) {
     const __m128 zero = _mm_cmpeq_ps(d, _mm_setzero_ps());

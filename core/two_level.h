@@ -13,7 +13,6 @@
 #include "core/traverse.h"
 
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -105,18 +104,8 @@ struct PrimitiveQuery {
 }
 
 #if defined(__SSE2__)
-// The ray as two 16-byte loads: (origin, tmin) and (direction, tmax). One
-// load each instead of load3's three instructions; lane 3 is ignored by every
-// use below (core/box_lanes.h's box test reads lanes 0-2 only).
-struct RayLanes {
-    __m128 origin_tmin, direction_tmax;
-    explicit RayLanes(const Ray& ray)
-        : origin_tmin(_mm_loadu_ps(&ray.origin.x)), direction_tmax(_mm_loadu_ps(&ray.direction.x)) {
-        static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
-    }
-};
-
-// passes_identity_reference() on the lanes, for lanes 0-2 of both vectors.
+// passes_identity_reference() on the ray's lanes (core/box_lanes.h's
+// RayLanes), for lanes 0-2 of both vectors: lane 3 holds tmin and tmax.
 [[nodiscard, gnu::always_inline]] inline bool passes_identity(const RayLanes& r) {
     const __m128 o = r.origin_tmin, d = r.direction_tmax;
     const __m128 zero = _mm_setzero_ps();

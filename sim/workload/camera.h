@@ -10,9 +10,7 @@
 #include "core/box_lanes.h"
 #include "core/ray.h"
 
-#include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -82,7 +80,6 @@ struct CameraLanes {
     const __m128 dir = _mm_mul_ps(v, _mm_shuffle_ps(inv, inv, _MM_SHUFFLE(0, 0, 0, 0)));
     // The ray in two 16-byte stores: (origin, tmin = the origin's lane 3,
     // 0) and (direction, tmax = +inf in lane 3).
-    static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
     const __m128 inf_w = _mm_set_ps(kInfinity, 0.0f, 0.0f, 0.0f);
 #if defined(__SSE4_1__)
     const __m128 dir_tmax = _mm_blend_ps(dir, inf_w, 0x8);
@@ -91,8 +88,7 @@ struct CameraLanes {
     const __m128 dir_tmax = _mm_or_ps(_mm_and_ps(dir, xyz), inf_w);
 #endif
     Ray r;
-    std::memcpy(reinterpret_cast<char*>(&r), &f.origin, 16);
-    std::memcpy(reinterpret_cast<char*>(&r) + 16, &dir_tmax, 16);
+    store_ray(f.origin, dir_tmax, r);
     return r;
 #else
     return frame_ray_reference(f.frame, x, y);

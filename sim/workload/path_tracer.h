@@ -10,6 +10,7 @@
 // roulette is off by default), so ray counts match between methods too.
 #pragma once
 
+#include "core/box_lanes.h"
 #include "core/ray.h"
 #include "sim/workload/camera.h"
 #include "sim/workload/rng.h"
@@ -21,15 +22,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <optional>
 #include <utility>
-
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
 
 namespace rtc {
 
@@ -93,17 +88,12 @@ struct PathSample {
     return p + facing * (ray_offset * scale);
 }
 
-// ray = (origin, tmin 0, direction, tmax +inf). With SSE in two 16-byte
-// stores, (origin, 0) and (direction, +inf): the trace loads the ray as two
-// 16-byte vectors (core/two_level.h's RayLanes), and a load that spans the
-// separate stores of fields cannot take its data from the store buffer.
+// ray = (origin, tmin 0, direction, tmax +inf), with SSE in two 16-byte
+// stores (core/box_lanes.h's store_ray: the trace loads it as RayLanes).
 [[gnu::always_inline]] inline void set_ray(Ray& ray, const Vec3& origin, const Vec3& direction) {
 #if defined(__SSE2__)
-    static_assert(offsetof(Ray, tmin) == 12 && offsetof(Ray, direction) == 16 && offsetof(Ray, tmax) == 28);
-    const __m128 o = _mm_setr_ps(origin.x, origin.y, origin.z, 0.0f);
-    const __m128 d = _mm_setr_ps(direction.x, direction.y, direction.z, kInfinity);
-    std::memcpy(reinterpret_cast<char*>(&ray), &o, 16);
-    std::memcpy(reinterpret_cast<char*>(&ray) + 16, &d, 16);
+    store_ray(_mm_setr_ps(origin.x, origin.y, origin.z, 0.0f),
+              _mm_setr_ps(direction.x, direction.y, direction.z, kInfinity), ray);
 #else
     ray = {origin, 0.0f, direction, kInfinity};
 #endif
