@@ -139,17 +139,13 @@ int run_merge(const CliOptions& cli) {
                 throw InputError(m->dir + "/shard.json: /units: point " + std::to_string(point) + " band " +
                                  std::to_string(b) + " has no frame of method " + method);
             const std::string file = (fs::path(m->dir) / it->second).string();
-            FrameResult f = read_frame_file(
-                file, frame_identity(plan.points[point].config.dump(), method, point, static_cast<std::uint32_t>(b),
-                                     static_cast<std::uint32_t>(list.size())));
-            // The frame the config makes, before the merge allocates it.
+            // The frame the config makes, checked before the merge allocates it.
             const WorkloadDesc& w = plan.parsed[point].workload;
-            const bool camera = w.type != WorkloadType::Rays;
-            if (camera ? (f.width != w.width || f.height != w.height) : f.width != 0)
-                throw InputError(file + ": a " + std::to_string(f.width) + " x " + std::to_string(f.height) +
-                                 " frame, the config's is " +
-                                 (camera ? std::to_string(w.width) + " x " + std::to_string(w.height) : "a ray list"));
-            return f;
+            const FrameShape shape = w.type == WorkloadType::Rays ? FrameShape{} : FrameShape{w.width, w.height};
+            return read_frame_file(file,
+                                   frame_identity(plan.points[point].config.dump(), method, point,
+                                                  static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(list.size())),
+                                   shape);
         }, what);
     };
     const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", first.config_file);

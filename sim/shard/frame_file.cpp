@@ -65,6 +65,7 @@ public:
         in_.require_records(at_, n, bytes, what, count_at);
     }
     [[noreturn]] void fail(const std::string& problem) const { in_.fail(at_, problem); }
+    [[noreturn]] void fail_at(std::size_t at, const std::string& problem) const { in_.fail(at, problem); }
     [[nodiscard]] std::size_t offset() const { return at_; }
     [[nodiscard]] bool at_end() const { return at_ == in_.size(); }
 
@@ -126,7 +127,7 @@ void write_frame_file(const std::string& path, const FrameResult& f, const std::
     w.close();
 }
 
-FrameResult read_frame_file(const std::string& path, const std::string& identity) {
+FrameResult read_frame_file(const std::string& path, const std::string& identity, const FrameShape& expected) {
     Reader r(path);
     char magic[8];
     for (char& c : magic) c = r.get<char>("header");
@@ -144,9 +145,17 @@ FrameResult read_frame_file(const std::string& path, const std::string& identity
     const auto presets = r.get<std::uint32_t>("warp presets");
     if (presets > 1024) r.fail("implausible warp preset count " + std::to_string(presets));
     FrameResult f;
+    const std::size_t shape_at = r.offset();
     f.width = r.get<std::int32_t>("width");
     f.height = r.get<std::int32_t>("height");
     if (f.width < 0 || f.height < 0 || (f.width == 0) != (f.height == 0)) r.fail("bad frame size");
+    if (f.width != expected.width || f.height != expected.height) {
+        const auto shape = [](int w, int h) {
+            return w ? std::to_string(w) + " x " + std::to_string(h) + " frame" : std::string("ray list");
+        };
+        r.fail_at(shape_at, "a " + shape(f.width, f.height) + ", the config's is a " +
+                                shape(expected.width, expected.height));
+    }
     f.task_count = r.get<std::uint64_t>("task count");
     f.task_begin = r.get<std::uint64_t>("first task");
     f.item_begin = r.get<std::uint64_t>("first item");

@@ -28,8 +28,14 @@ void write_frame_file(const std::string& path, const FrameResult& frame, const s
 // Throws InputError "<path>: byte N: ..." on a truncated, foreign, misplaced or
 // inconsistent file, with every count checked against the file size before
 // anything is allocated.
-// A file whose identity is not `identity` is refused, naming both.
-[[nodiscard]] FrameResult read_frame_file(const std::string& path, const std::string& identity);
+// A file whose identity is not `identity` is refused, naming both, and so is a
+// frame of another shape than `expected` (the config's), as soon as the header
+// says so: the merge allocates the whole frame, so the file must not size it.
+struct FrameShape {
+    int width = 0, height = 0;  // 0 x 0: a ray list
+};
+[[nodiscard]] FrameResult read_frame_file(const std::string& path, const std::string& identity,
+                                          const FrameShape& expected);
 
 // Adds the bands of one frame (in band order, each from read_frame_file or a
 // banded run) into the frame a single run would have made: pixels from the

@@ -3,9 +3,9 @@
 // checked as a one-shard set, and its config_text planned with its --set
 // overrides (small ceilings) against its points and config_hash, as the
 // merge does before reading frames. Anything else is a frame file after one
-// line naming the identity the merge expects (so the fuzzer can get past the
-// identity check; the seeds carry the identity their file records), read and
-// merged as a one-band frame.
+// line giving the frame shape and the identity the merge expects (so the
+// fuzzer can get past those checks; the seeds carry what their file
+// records), read and merged as a one-band frame.
 #include "fuzz_common.h"
 #include "sim/app/run_all.h"
 #include "sim/shard/frame_file.h"
@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -45,13 +46,23 @@ void merge_manifest(const std::uint8_t* data, std::size_t size) {
 }
 
 void merge_frame(const std::uint8_t* data, std::size_t size) {
+    // "<width> <height> <identity>": the frame the config makes (0 0: a ray
+    // list), at most what a config within the small ceilings above could ask
+    // for, and the identity the merge expects.
     const std::string text(reinterpret_cast<const char*>(data), size);
     const std::size_t eol = text.find('\n');
     if (eol == std::string::npos) return;
-    const std::string identity = text.substr(0, eol);
+    std::istringstream line(text.substr(0, eol));
+    rtc::FrameShape shape;
+    if (!(line >> shape.width >> shape.height) || shape.width < 0 || shape.height < 0 ||
+        static_cast<double>(shape.width) * shape.height > 1e6)
+        return;
+    line.get();  // the space before the identity
+    std::string identity;
+    std::getline(line, identity);
     const std::string path = rtc::fuzz::write_scratch(data + eol + 1, size - eol - 1, ".frame");
     const rtc::FrameResult f = rtc::merge_frame_bands(
-        1, [&](std::size_t) { return rtc::read_frame_file(path, identity); }, "fuzz merge");
+        1, [&](std::size_t) { return rtc::read_frame_file(path, identity, shape); }, "fuzz merge");
     (void)f;
 }
 

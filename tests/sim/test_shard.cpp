@@ -218,7 +218,7 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
     CHECK(identity.find(", band 1 of 2") != std::string::npos);
     std::ofstream(frame, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
     try {
-        (void)read_frame_file(frame.string(), identity);
+        (void)read_frame_file(frame.string(), identity, {48, 48});
         FAIL("a truncated frame file was read");
     } catch (const InputError& e) {
         CHECK(std::string(e.what()).find(frame.string() + ": byte ") == 0);
@@ -233,8 +233,24 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
         std::string bad = bytes;
         for (std::size_t k = at; k < at + 8; ++k) bad[k] = static_cast<char>(0xFF);
         std::ofstream(frame, std::ios::binary | std::ios::trunc).write(bad.data(), static_cast<std::streamsize>(bad.size()));
-        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity), doctest::Contains(frame.string().c_str()),
+        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity, {48, 48}), doctest::Contains(frame.string().c_str()),
                              InputError);
+    }
+    // A frame larger than the config's (here 40000 x 40000, with the file's
+    // few items inside it) is refused at its size field, before the merge
+    // would allocate the whole frame.
+    {
+        std::string big = bytes;
+        const std::int32_t side = 40000;
+        std::memcpy(big.data() + 20 + shift, &side, 4);
+        std::memcpy(big.data() + 24 + shift, &side, 4);
+        std::ofstream(frame, std::ios::binary | std::ios::trunc).write(big.data(), static_cast<std::streamsize>(big.size()));
+        const std::string refused = frame.string() + ": byte " + std::to_string(20 + shift) +
+                                    ": a 40000 x 40000 frame, the config's is a 48 x 48 frame";
+        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity, {48, 48}), refused.c_str(), InputError);
+        has(merge_error({s0.string(), s1.string()}), "a 40000 x 40000 frame, the config's is a 48 x 48 frame");
+        CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity, {}),
+                             doctest::Contains("the config's is a ray list"), InputError);
     }
     // Calibration does not shard.
     CHECK(simulate({"calibrate", "configs/runs/fig3_bundles.json", "--shard", "0/2", "--out", fresh("cal").string()}) == 2);
