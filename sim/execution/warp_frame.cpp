@@ -40,7 +40,6 @@ WarpFrame::WarpFrame(const RayWorkload& work, const FrameOptions& fo)
     const std::size_t lanes = std::max(static_cast<std::size_t>(fo.warp->tile_width) * fo.warp->tile_height,
                                        static_cast<std::size_t>(fo.warp->warp_width));
     for (Thread& th : threads_) {
-        th.scratch.profiles = &th.profiles;
         for (const DrawSet& set : fo.warp_draws) th.draws.emplace_back(set);
         th.prices.resize(presets_);
         th.waves.resize(depths);

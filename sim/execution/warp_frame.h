@@ -72,21 +72,19 @@ public:
     [[nodiscard]] std::size_t rays_per_task() const { return rays_per_task_; }
 
     // The ray just traced, as a lane of the wave of its bounce `depth`: its
-    // counts and the program calls it made (th.scratch.calls). Inline, once
-    // per ray: as a call it cost 68 instructions per ray (case 2 ref).
+    // counts and the program calls it made (th.scratch.calls, as profile
+    // ids). Inline, once per ray: as a call it cost 68 instructions per ray
+    // (case 2 ref).
     [[gnu::always_inline]] static void add_lane(Thread& th, std::size_t depth, std::uint32_t pixel,
                                                 const RayCounts& counts) {
         WaveWork& w = th.waves[depth];  // sized for every bounce (the constructor)
-        const std::vector<CallProfiles::Id>& calls = th.scratch.calls;
+        const CallCounts& calls = th.scratch.calls;
         LaneWork& l = w.lanes.emplace_back();  // unconstructed: every field is written here
         l.counts.copy_from(counts);
         l.first_call = static_cast<std::uint32_t>(w.calls.size());
         l.calls = static_cast<std::uint32_t>(calls.size());
         l.pixel = pixel;
-        if (calls.size() == 1)  // the usual call count when there is one: no memmove
-            w.calls.push_back(calls[0]);
-        else if (!calls.empty())
-            w.calls.insert(w.calls.end(), calls.begin(), calls.end());
+        for (const ProgramCounts& c : calls) w.calls.push_back(th.profiles.id(c));
     }
 
     // Prices every wave with lanes under each preset and draw, adds the
@@ -132,7 +130,7 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
         WarpFrame::Thread& th = f.thread(thread);
         FrameResult& out = f.result();
         CountingSink sink;
-        // The tracer records each program call's profile (th.scratch.calls):
+        // The tracer records each program call's counts (th.scratch.calls):
         // an instantiation of its own, the per-ray model's has no recording.
         auto trace_ray = tracer(sink, th.scratch, std::true_type{});
         // One ray of a lane: its own counts (the sink is cleared per ray),

@@ -10,13 +10,16 @@
 
 #include "core/sinks.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <unordered_map>
 #include <vector>
 
-#if defined(__SSE2__)
+#if defined(__AVX2__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
@@ -43,13 +46,17 @@ struct ProgramCounts {
         const std::uint8_t s = kProgramSlot[static_cast<std::size_t>(e)];
         return s == 0xFF ? 0u : n[s];
     }
-    // Once per program call: 16-byte compares, then the last 8 bytes (the
-    // 2-vector form this replaces required exactly 16 slots and had not
-    // applied since there are 20).
+    // Once per program call: 32-byte (AVX2) or 16-byte compares, then the
+    // last 8 bytes (the 2-vector form this replaces required exactly 16
+    // slots and had not applied since there are 20).
     [[nodiscard]] bool operator==(const ProgramCounts& o) const {
         constexpr std::size_t kBytes = sizeof n;
         static_assert(kBytes % 8 == 0);
         std::size_t b = 0;
+#if defined(__AVX2__)
+        for (; b + 32 <= kBytes; b += 32)
+            if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(load32(b), o.load32(b))) != -1) return false;
+#endif
 #if defined(__SSE2__)
         __m128i eq = _mm_set1_epi8(-1);
         for (; b + 16 <= kBytes; b += 16) eq = _mm_and_si128(eq, _mm_cmpeq_epi8(load16(b), o.load16(b)));
@@ -71,6 +78,11 @@ private:
         std::memcpy(&w, reinterpret_cast<const char*>(n.data()) + byte, 8);
         return w;
     }
+#if defined(__AVX2__)
+    [[nodiscard]] __m256i load32(std::size_t byte) const {
+        return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(reinterpret_cast<const char*>(n.data()) + byte));
+    }
+#endif
 #if defined(__SSE2__)
     [[nodiscard]] __m128i load16(std::size_t byte) const {
         return _mm_loadu_si128(reinterpret_cast<const __m128i*>(reinterpret_cast<const char*>(n.data()) + byte));
@@ -82,7 +94,7 @@ private:
 struct CallSink {
     static constexpr bool kCounts = true;
     CountingSink& ray;
-    ProgramCounts call;
+    ProgramCounts& call;
 
     void on(Event e) { add(e, 1); }
     void add(Event e, std::uint32_t k) {
@@ -90,6 +102,48 @@ struct CallSink {
         const std::uint8_t s = kProgramSlot[static_cast<std::size_t>(e)];
         if (s != 0xFF) call.n[s] = static_cast<std::uint16_t>(call.n[s] + k);
     }
+};
+
+// Each program call's own counts during one ray, in call order: one zeroed
+// slot per call, from storage kept across rays. add() is inline:
+// std::vector's emplace_back stayed an out-of-line call (27 instructions per
+// program call, case 1 ref).
+class CallCounts {
+public:
+    CallCounts() = default;
+    // A copy has its own slots (the pointers are rebased; moves copy too).
+    CallCounts(const CallCounts& o) { *this = o; }
+    CallCounts& operator=(const CallCounts& o) {
+        if (this == &o) return *this;
+        const std::size_t used = o.size();
+        slots_ = o.slots_;
+        next_ = slots_.data() + used;
+        end_ = slots_.data() + slots_.size();
+        return *this;
+    }
+    [[gnu::always_inline]] ProgramCounts& add() {
+        if (next_ == end_) [[unlikely]]
+            grow();
+        ProgramCounts& c = *next_++;
+        c = ProgramCounts{};
+        return c;
+    }
+    void clear() { next_ = slots_.data(); }
+    [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>(next_ - slots_.data()); }
+    [[nodiscard]] const ProgramCounts* begin() const { return slots_.data(); }
+    [[nodiscard]] const ProgramCounts* end() const { return next_; }
+
+private:
+    // Pointers, not an index: no multiply by the slot size per call.
+    [[gnu::noinline]] void grow() {
+        const std::size_t used = size();
+        slots_.resize(std::max<std::size_t>(64, 2 * slots_.size()));
+        next_ = slots_.data() + used;
+        end_ = slots_.data() + slots_.size();
+    }
+    std::vector<ProgramCounts> slots_;
+    ProgramCounts* next_ = nullptr;  // the next free slot
+    ProgramCounts* end_ = nullptr;   // past the last slot
 };
 
 class CallProfiles {

@@ -44,10 +44,12 @@ struct TraceOptions {
 struct TraceScratch {
     std::vector<std::uint32_t> deferred;
     // The SIMT model needs each program call's own events: a LeafPrograms
-    // that records calls (kRecordCalls) appends each call's profile id, from
-    // `profiles`, to `calls` (cleared per ray).
-    CallProfiles* profiles = nullptr;
-    std::vector<CallProfiles::Id> calls;
+    // that records calls (kRecordCalls) counts each call into a slot of its
+    // own here (cleared per ray). The frame looks their profile ids up after
+    // the ray (WarpFrame::add_lane), not after each call: the lookup's
+    // 16-byte loads of counts the program had just written in 2-byte adds
+    // could not be forwarded from the store buffer and stalled every call.
+    CallCounts calls;
 };
 
 template <class Prim, class Sink>
@@ -68,8 +70,8 @@ inline constexpr Ops kLeafObbTest{.fma = 41, .div = 3, .branch = 2, .load = 3};
 // The leaf handling of one ray. A method's trace function calls begin(),
 // then triangle() / custom() for each primitive its traversal reaches (each
 // returns the distance of an accepted hit, or +inf), then finish().
-// kRecordCalls: each program call's profile is recorded for the SIMT model
-// (scratch.profiles must be set). A compile-time flag, not a runtime test,
+// kRecordCalls: each program call's own counts are recorded for the SIMT
+// model (scratch.calls). A compile-time flag, not a runtime test,
 // so that the per-ray model's traversal is compiled without any recording
 // (a runtime branch here changed how GCC inlined the per-ray path).
 template <class Prim, class Sink, bool kRecordCalls = false>
@@ -152,10 +154,8 @@ private:
         ray.tmax = tmax;
         if constexpr (kRecordCalls) {  // the call's events into the ray's and apart
             static_assert(std::is_same_v<Sink, CountingSink>, "recorded calls count into a CountingSink");
-            CallSink call{sink_, {}};
-            const float t = program(index, ray, call);
-            scratch_.calls.push_back(scratch_.profiles->id(call.call));
-            return t;
+            CallSink call{sink_, scratch_.calls.add()};  // a zeroed slot
+            return program(index, ray, call);
         } else {
             return program(index, ray, sink_);
         }

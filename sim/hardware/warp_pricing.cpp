@@ -67,6 +67,28 @@ void lane_prices(const WaveWork& wave, const CostModel& m, double* shader, doubl
     }
 }
 
+// w[r] = max(w[r], price[call[r]]) for rounds r = `r`, r + 1, ... while four
+// fit in `calls`, four rounds per instruction; leaves `r` at the first round
+// not done. Only the maxima: without effective counts nobody asks which call
+// was the most expensive. The same doubles as the scalar loop (a max of the
+// same values; prices are finite).
+void round_maxima(const CallProfiles::Id* call, std::uint32_t calls, const double* price, double* w,
+                  std::uint32_t& r) {
+#if defined(__AVX2__)
+    static_assert(sizeof(CallProfiles::Id) == 2);
+    for (; r + 4 <= calls; r += 4) {
+        const __m128i ids = _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(call + r)));
+        // The masked form: the plain one leaves its pass-through operand
+        // undefined, which GCC 12 reports as maybe-uninitialized.
+        const __m256d c = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), price, ids,
+                                                   _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+        _mm256_storeu_pd(w + r, _mm256_max_pd(_mm256_loadu_pd(w + r), c));
+    }
+#else
+    (void)call, (void)calls, (void)price, (void)w, (void)r;
+#endif
+}
+
 }  // namespace
 
 double program_price(const ProgramCounts& call, const CostModel& m) {
@@ -144,7 +166,9 @@ WavePrice price_wave_impl(const WaveWork& wave, const CostModel& m, ProgramPrice
     for (const LaneWork& l : wave.lanes) {
         p.active_lane_rounds += l.calls;
         const CallProfiles::Id* call = wave.calls.data() + l.first_call;
-        for (std::uint32_t r = 0; r < l.calls; ++r) {
+        std::uint32_t r = 0;
+        if (kLanesAtOnce && !eff) round_maxima(call, l.calls, price, w, r);
+        for (; r < l.calls; ++r) {
             const double c = price[call[r]];
             if (c > w[r]) w[r] = c, wc[r] = call[r];
         }

@@ -201,6 +201,40 @@ using rtc::test::same_bits;
 
 }  // namespace
 
+TEST_CASE("call counts: zeroed slots kept through growth and copies; profiles tell every slot apart") {
+    CallCounts calls;
+    for (int round = 0; round < 2; ++round) {  // again after clear(): reused slots start zeroed
+        calls.clear();
+        for (std::uint16_t k = 0; k < 200; ++k) {  // past the first 64 slots: grown
+            ProgramCounts& c = calls.add();
+            CHECK(c == ProgramCounts{});
+            c.n[k % kProgramSlots] = static_cast<std::uint16_t>(k + 1);
+        }
+        REQUIRE(calls.size() == 200);
+        const CallCounts copy = calls;
+        calls.add().n[0] = 7;  // the copy has its own slots
+        REQUIRE(copy.size() == 200);
+        std::uint16_t k = 0;
+        bool kept = true;
+        for (const ProgramCounts& c : copy) {
+            ProgramCounts expected;
+            expected.n[k % kProgramSlots] = static_cast<std::uint16_t>(k + 1);
+            kept = kept && c == expected;
+            ++k;
+        }
+        CHECK(kept);
+        CHECK(calls.size() == 201);
+    }
+    // Equality looks at every slot (the vector compares and the tail word).
+    for (std::size_t k = 0; k < kProgramSlots; ++k) {
+        ProgramCounts a, b;
+        b.n[k] = 1;
+        CHECK_FALSE(a == b);
+        a.n[k] = 1;
+        CHECK(a == b);
+    }
+}
+
 TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
     std::mt19937 rng(39);
     CallProfiles table;
@@ -219,7 +253,7 @@ TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
             for (std::uint32_t& n : l.counts.n) n = rng() % 7 == 0 ? rng() : rng() % 200;
             for (const std::uint8_t e : kProgramEvents) l.counts.n[e] = 0;
             l.first_call = static_cast<std::uint32_t>(w.calls.size());
-            l.calls = rng() % 6;
+            l.calls = rng() % 12;  // the rounds four at a time, and their tails
             l.pixel = static_cast<std::uint32_t>(i);
             for (std::uint32_t c = 0; c < l.calls; ++c) w.calls.push_back(table.id(calls[rng() % calls.size()]));
         }
@@ -235,6 +269,8 @@ TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
         CHECK(same_bits(a.programs, b.programs));
         CHECK(a.rounds == b.rounds);
         CHECK(a.active_lane_rounds == b.active_lane_rounds);
+        // Without effective counts the rounds take only their maxima.
+        CHECK(same_bits(c.programs, b.programs));
         CHECK(same_bits(c.total(), b.total()));
         bool same_eff = true;
         for (std::size_t e = 0; e < kEventCount; ++e) same_eff = same_eff && same_bits(fast_eff[e], ref_eff[e]);
