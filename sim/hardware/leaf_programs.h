@@ -46,9 +46,11 @@ struct TraceScratch {
     // The SIMT model needs each program call's own events: a LeafPrograms
     // that records calls (kRecordCalls) counts each call into a slot of its
     // own here (cleared per ray). The frame looks their profile ids up after
-    // the ray (WarpFrame::add_lane), not after each call: the lookup's
-    // 16-byte loads of counts the program had just written in 2-byte adds
-    // could not be forwarded from the store buffer and stalled every call.
+    // the ray (WarpFrame::add_lane), not after each call, where the lookup's
+    // 16-byte loads read counts the program had just written in 2-byte adds,
+    // which the store buffer cannot forward (inferred: this VM has no
+    // hardware counters; the warp model's wall time fell 7-11 %,
+    // docs/benchmark.md).
     CallCounts calls;
 };
 
