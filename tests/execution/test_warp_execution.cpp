@@ -201,7 +201,7 @@ using rtc::test::same_bits;
 
 }  // namespace
 
-TEST_CASE("call counts: zeroed slots kept through growth and copies; profiles tell every slot apart") {
+TEST_CASE("call counts: zeroed slots kept through growth and copies, profiles tell every slot apart") {
     CallCounts calls;
     for (int round = 0; round < 2; ++round) {  // again after clear(): reused slots start zeroed
         calls.clear();
