@@ -45,8 +45,8 @@ struct FrameShape {
 // `band_at(i)` gives band i (0 .. count - 1) as read_frame_file returns it;
 // one band is held at a time. The first band must start at item 0 and each
 // next one where the previous ended, so the whole frame's arrays never grow
-// past the items the files hold (camera frames: width x height, which the
-// caller checks against the config before merging).
+// past the items the files hold (camera frames: width x height, which
+// read_frame_file has checked against the config's FrameShape).
 [[nodiscard]] FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult(std::size_t)>& band_at,
                                             const std::string& what);
 
