@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #if defined(__AVX2__)
 #include <immintrin.h>
@@ -51,10 +52,10 @@ __m256d price_of_4(const LaneWork* lanes, const CostModel& m, const List& events
 }
 #endif
 
-// Every lane's shader and RT-unit price (without lockstep events).
-void lane_prices(const WaveWork& wave, const CostModel& m, double* shader, double* rt) {
+// The shader and RT-unit price (without lockstep events) of every lane from
+// `i` on.
+void lane_prices(const WaveWork& wave, const CostModel& m, double* shader, double* rt, std::size_t i) {
     const std::size_t n = wave.lanes.size();
-    std::size_t i = 0;
 #if defined(__AVX2__)
     for (; i + 4 <= n; i += 4) {
         _mm256_storeu_pd(shader + i, price_of_4(&wave.lanes[i], m, kShaderEvents));
@@ -65,6 +66,50 @@ void lane_prices(const WaveWork& wave, const CostModel& m, double* shader, doubl
         shader[i] = price_of(wave.lanes[i].counts, m, kShaderEvents);
         rt[i] = price_of(wave.lanes[i].counts, m, kRtEvents);
     }
+}
+
+// For lanes [0, i), four at a time, with i returned (a multiple of 4): the
+// most expensive lane's shader price and RT price (into `shader_max` and
+// `rt_max`, which start at 0 and -1), the sum of their RT prices in lane
+// order (the same doubles as the lane-by-lane loop: a max of the same values,
+// and the same additions in the same order), and the most calls of a lane.
+std::size_t lane_maxima(const WaveWork& wave, const CostModel& m, double& shader_max, double& rt_max,
+                        double& rt_sum, std::uint32_t& max_calls) {
+    std::size_t i = 0;
+#if defined(__AVX2__)
+    const std::size_t n = wave.lanes.size();
+    if (n < 4) return 0;
+    static_assert(sizeof(LaneWork) % sizeof(std::uint32_t) == 0 && offsetof(LaneWork, calls) % 4 == 0);
+    constexpr int kStride = sizeof(LaneWork) / sizeof(std::uint32_t);
+    const __m128i index = _mm_setr_epi32(0, kStride, 2 * kStride, 3 * kStride);
+    __m256d s_max = _mm256_set1_pd(shader_max), r_max = _mm256_set1_pd(rt_max);
+    __m128i calls_max = _mm_setzero_si128();
+    double sum = rt_sum;
+    for (; i + 4 <= n; i += 4) {
+        const LaneWork* l = &wave.lanes[i];
+        s_max = _mm256_max_pd(s_max, price_of_4(l, m, kShaderEvents));
+        const __m256d r = price_of_4(l, m, kRtEvents);
+        r_max = _mm256_max_pd(r_max, r);
+        alignas(32) double lane_rt[4];
+        _mm256_store_pd(lane_rt, r);
+        sum = (((sum + lane_rt[0]) + lane_rt[1]) + lane_rt[2]) + lane_rt[3];
+        calls_max = _mm_max_epu32(calls_max, _mm_i32gather_epi32(reinterpret_cast<const int*>(&l->calls), index, 4));
+    }
+    alignas(32) double s4[4], r4[4];
+    _mm256_store_pd(s4, s_max);
+    _mm256_store_pd(r4, r_max);
+    alignas(16) std::uint32_t c4[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(c4), calls_max);
+    for (int k = 0; k < 4; ++k) {
+        shader_max = std::max(shader_max, s4[k]);
+        rt_max = std::max(rt_max, r4[k]);
+        max_calls = std::max(max_calls, c4[k]);
+    }
+    rt_sum = sum;
+#else
+    (void)wave, (void)m, (void)shader_max, (void)rt_max, (void)rt_sum, (void)max_calls;
+#endif
+    return i;
 }
 
 // w[r] = max(w[r], price[call[r]]) for rounds r = `r`, r + 1, ... while four
@@ -122,12 +167,16 @@ WavePrice price_wave_impl(const WaveWork& wave, const CostModel& m, ProgramPrice
     // in lockstep, so the wave pays its slowest lane's loop, outside the unit.
     const std::vector<Event>& loop = m.execution.lockstep_events;
     thread_local std::vector<double> lane_shader, lane_rt;
+    std::size_t i = 0;
     if constexpr (kLanesAtOnce) {
+        // Nobody asks which lane was the slowest: the lanes' maxima and
+        // sums four lanes at a time, straight from their prices.
+        if (!eff && loop.empty()) i = lane_maxima(wave, m, p.shader, rt_max, p.rt_lane_sum, max_calls);
         lane_shader.resize(wave.lanes.size());
         lane_rt.resize(wave.lanes.size());
-        lane_prices(wave, m, lane_shader.data(), lane_rt.data());
+        lane_prices(wave, m, lane_shader.data(), lane_rt.data(), i);
     }
-    for (std::size_t i = 0; i < wave.lanes.size(); ++i) {
+    for (; i < wave.lanes.size(); ++i) {
         const LaneWork& l = wave.lanes[i];
         const double s = kLanesAtOnce ? lane_shader[i] : price_of(l.counts, m, kShaderEvents);
         if (s > p.shader) p.shader = s, shader_lane = i;
@@ -164,6 +213,7 @@ WavePrice price_wave_impl(const WaveWork& wave, const CostModel& m, ProgramPrice
     double* const w = worst.data();
     CallProfiles::Id* const wc = worst_call.data();
     for (const LaneWork& l : wave.lanes) {
+        if (l.calls == 0) continue;
         p.active_lane_rounds += l.calls;
         const CallProfiles::Id* call = wave.calls.data() + l.first_call;
         std::uint32_t r = 0;

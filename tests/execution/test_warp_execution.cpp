@@ -269,9 +269,15 @@ TEST_CASE("warp pricing: lanes priced at once give the reference's doubles") {
         CHECK(same_bits(a.programs, b.programs));
         CHECK(a.rounds == b.rounds);
         CHECK(a.active_lane_rounds == b.active_lane_rounds);
-        // Without effective counts the rounds take only their maxima.
+        // Without effective counts the lanes and rounds take only their
+        // maxima and sums (lane_maxima, round_maxima).
+        CHECK(same_bits(c.shader, b.shader));
+        CHECK(same_bits(c.rt, b.rt));
+        CHECK(same_bits(c.rt_lane_sum, b.rt_lane_sum));
         CHECK(same_bits(c.programs, b.programs));
         CHECK(same_bits(c.total(), b.total()));
+        CHECK(c.rounds == b.rounds);
+        CHECK(c.active_lane_rounds == b.active_lane_rounds);
         bool same_eff = true;
         for (std::size_t e = 0; e < kEventCount; ++e) same_eff = same_eff && same_bits(fast_eff[e], ref_eff[e]);
         CHECK(same_eff);
