@@ -9,6 +9,7 @@
 #include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
 #include "sim/bench/embree_bench.h"
+#include "sim/bench/warp_price_bench.h"
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
 #include "sim/util/process_memory.h"
@@ -49,11 +50,14 @@ constexpr const char* kHelp =
     "  --methods LIST only these methods (any registered name) where a case has them\n"
     "  --execution M  per_ray (default) or warp: trace in warps priced under\n"
     "                 --warp-preset (default turing-calibrated)\n"
-    "  --warp-preset P the warp preset of --execution warp, by name or path\n"
+    "  --warp-preset P the warp preset of --execution warp and --warp-price, by name or path\n"
     "  --pixels N     override every case's resolution with N x N (quick runs, profiling)\n"
     "  --embree       trace each case's rays through Embree 3 too (ref, obb; default cases\n"
     "                 1,2,3): rates side by side, timed alternately, their ratio, and a\n"
     "                 check of the hits (exit 1 if they differ; 77 if built without Embree)\n"
+    "  --warp-price   time per-ray and warp traces of each case's frame alternately (default\n"
+    "                 cases 1,2; warp under --warp-preset): their rates and warp's time over\n"
+    "                 per-ray's, pair by pair (exit 1 if their event counts differ)\n"
     "  --help         this text\n"
     "Options take --opt value or --opt=value.\n";
 
@@ -61,6 +65,7 @@ struct Cli {
     std::set<int> cases{1, 2, 3, 4, 5};
     bool scale = false;
     bool embree = false;  // --embree
+    bool warp_price = false;  // --warp-price
     BenchOptions bench;
     std::string data = "../shared/data";
     std::string json_file;
@@ -93,12 +98,13 @@ Cli parse(int argc, char** argv) {
     Cli cli;
     CLI::App app{"bench"};
     app.set_help_flag();  // kHelp is the help text
-    bool help = false, scale = false, embree = false;
+    bool help = false, scale = false, embree = false, warp_price = false;
     std::string cases, threads, repeat, data, methods, execution, warp_preset = "turing-calibrated", pixels, json;
     std::vector<std::string> compare;
     app.add_flag("-h,--help", help);
     app.add_flag("--scale", scale);
     app.add_flag("--embree", embree);
+    app.add_flag("--warp-price", warp_price);
     for (const auto& [name, value] :
          {std::pair{"--cases", &cases}, {"--threads", &threads}, {"--repeat", &repeat}, {"--data", &data},
           {"--methods", &methods}, {"--execution", &execution}, {"--warp-preset", &warp_preset},
@@ -142,7 +148,9 @@ Cli parse(int argc, char** argv) {
     };
     cli.scale = scale;
     cli.embree = embree;
+    cli.warp_price = warp_price;
     if (embree && !given("--cases")) cli.cases = {1, 2, 3};
+    if (warp_price && !given("--cases")) cli.cases = {1, 2};
     if (given("--cases")) {
         cli.cases.clear();
         for (const std::string& item : items(value("--cases", cases))) {
@@ -174,8 +182,10 @@ Cli parse(int argc, char** argv) {
     if (embree && scale) throw InputError("bench: --embree traces the standard cases, not --scale");
     if (embree && execution == "warp")
         throw InputError("bench: --embree times per-ray execution (drop --execution warp)");
+    if (warp_price && (embree || scale || given("--execution")))
+        throw InputError("bench: --warp-price times both executions itself (drop --embree, --scale and --execution)");
     // A preset by name (searched like simulate's) or by path.
-    if (execution == "warp")
+    if (execution == "warp" || warp_price)
         cli.bench.warp_preset = resolve_preset(value("--warp-preset", warp_preset), "bench", "--warp-preset");
     return cli;
 }
@@ -251,7 +261,7 @@ int main(int argc, char** argv) {
                         "libembree-dev, then configure again)\n");
             return 77;  // ctest's SKIP_RETURN_CODE for the Embree test
         }
-        bool hits_agree = true;
+        bool hits_agree = true, counts_agree = true;
         std::vector<BenchCase> cases;
         if (cli.scale) {
             cases.push_back(scale_case());
@@ -300,6 +310,10 @@ int main(int argc, char** argv) {
                     hits_agree = compare_with_embree(run, cli.bench) && hits_agree;
                     continue;
                 }
+                if (cli.warp_price) {
+                    counts_agree = compare_warp_price(run, cli.bench) && counts_agree;
+                    continue;
+                }
                 const RunFigures r = run_bench(run, cli.bench);
                 print_run(r);
                 jc["runs"].push_back(to_json(r));
@@ -320,7 +334,9 @@ int main(int argc, char** argv) {
             if (!f) throw InputError("bench: cannot write " + cli.json_file);
         }
         if (!hits_agree) std::printf("bench: rtcsim and Embree disagree on the hits (HITS DIFFER above)\n");
-        return hits_agree ? 0 : 1;
+        if (!counts_agree)
+            std::printf("bench: per-ray and warp execution counted different events (COUNTS DIFFER above)\n");
+        return hits_agree && counts_agree ? 0 : 1;
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;

@@ -68,6 +68,12 @@ ThreadRate time_traces(const BuiltMethod& method, const Geometry& g, const RayWo
     return method.run(g, frame, trace, fo);
 }
 
+Spread spread(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return {v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]), v.front(), v.back()};
+}
+
 std::uint64_t peak_rss_bytes() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);

@@ -74,6 +74,12 @@ struct LoadedRun {
                                             const RayWorkload& frame, const TraceOptions& trace,
                                             unsigned threads, const CostModel* warp);
 
+// Median, smallest and largest of a non-empty list (alternated timings).
+struct Spread {
+    double median, lo, hi;
+};
+[[nodiscard]] Spread spread(std::vector<double> v);
+
 // Peak resident set of the process so far (getrusage ru_maxrss), bytes.
 [[nodiscard]] std::uint64_t peak_rss_bytes();
 

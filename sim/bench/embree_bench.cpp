@@ -50,16 +50,6 @@ HitCheck check_hits(const std::vector<TraceHit>& ours, const std::vector<EmbreeH
     return c;
 }
 
-// Median, smallest and largest of a non-empty list.
-struct Spread {
-    double median, lo, hi;
-};
-Spread spread(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t m = v.size() / 2;
-    return {v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]), v.front(), v.back()};
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
