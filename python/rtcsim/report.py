@@ -197,8 +197,13 @@ def require_finished(directory):
 
 def _read_json(path):
     from ._rtcsim import InputError
-    with open(path, "rb") as f:
-        text = f.read()
+    try:
+        with open(path, "rb") as f:
+            text = f.read()
+    except FileNotFoundError:  # as simulate merge says it (e.g. a run killed before it marked its directory)
+        raise InputError(f"{path}: not found") from None
+    except OSError as e:
+        raise InputError(f"{path}: cannot read ({e.strerror})") from None
     try:
         return json.loads(text)
     except (ValueError, RecursionError) as e:

@@ -1,7 +1,9 @@
 """A run killed (SIGKILL) at any moment, writing included, leaves nothing a
 reader takes for a finished run: rtcsim.load_report / load_reports raise
 rtcsim.InputError and `python3 -m rtcsim.plot` exits 2, naming the
-directory, and `simulate merge` refuses a killed shard. A kill that came too
+directory, and `simulate merge` refuses a killed shard. (Killed after making
+its directory but before marking it, a run leaves it empty: load_report
+names the missing report.json, load_reports finds no report.) A kill that came too
 late (the run had finished) leaves a directory equal to an undisturbed run's.
 The output directory's mark (.rtcsim-output) says `state: complete` only
 after the last file (sim/app/output_dir.h)."""
@@ -68,6 +70,15 @@ def test_a_killed_run_is_refused_by_python_and_plot(tmp_path):
             assert same_outputs(out, solo), f"{out}: finished, but not as the undisturbed run"
             continue
         refused += 1
+        if not (out / ".rtcsim-output").exists():
+            # Killed between making its directory and marking it: empty, and
+            # nothing says it was simulate's. Refused as a missing report
+            # (simulate merge's words for a shard's missing file).
+            assert not any(out.iterdir()), f"{out}: files without simulate's mark"
+            with pytest.raises(rtcsim.InputError, match=f"{out}/report.json: not found"):
+                rtcsim.load_report(out)
+            assert rtcsim.load_reports(out) == []
+            continue
         message = f"{out}: an unfinished simulate run"
         with pytest.raises(rtcsim.InputError, match=message):
             rtcsim.load_report(out)
@@ -84,6 +95,14 @@ def test_a_killed_run_is_refused_by_python_and_plot(tmp_path):
                 "complete: it failed, was killed, or is still running)"
     print(f"{refused} of {KILLS} kills before the end, {written} while writing")
     assert refused > 0
+
+
+def test_an_unmarked_empty_directory_is_a_missing_report(tmp_path):
+    # What a kill between simulate's mkdir and its mark leaves (rare in the
+    # kills above): an InputError naming the file, not a FileNotFoundError.
+    with pytest.raises(rtcsim.InputError, match=f"{tmp_path}/report.json: not found"):
+        rtcsim.load_report(tmp_path)
+    assert rtcsim.load_reports(tmp_path) == []
 
 
 def test_a_killed_shard_is_refused_by_merge(simulate, tmp_path):
