@@ -44,7 +44,7 @@ constexpr const char* kHelp =
     "                 number N > 1 times 1 and N; scaling is against the first count\n"
     "  --repeat K     best of K traces per figure (default 3)\n"
     "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
-    "  --json FILE    also write the figures as JSON\n"
+    "  --json FILE    also write the figures as JSON (not with --embree or --warp-price)\n"
     "  --compare A.json B.json  print B / A ratios of two --json files (rates, builds)\n"
     "                 and whether their event totals are identical; traces nothing\n"
     "  --methods LIST only these methods (any registered name) where a case has them\n"
@@ -182,6 +182,9 @@ Cli parse(int argc, char** argv) {
     if (embree && scale) throw InputError("bench: --embree traces the standard cases, not --scale");
     if (embree && execution == "warp")
         throw InputError("bench: --embree times per-ray execution (drop --execution warp)");
+    if ((embree || warp_price) && given("--json"))
+        throw InputError(std::string("bench: ") + (embree ? "--embree" : "--warp-price") +
+                         " prints its figures only (drop --json)");
     if (warp_price && (embree || scale || given("--execution")))
         throw InputError("bench: --warp-price times both executions itself (drop --embree, --scale and --execution)");
     // A preset by name (searched like simulate's) or by path.

@@ -5,8 +5,10 @@
 #include "sim/hardware/cost_model.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace rtc {
 
