@@ -9,7 +9,6 @@
 #include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
 #include "sim/bench/embree_bench.h"
-#include "sim/bench/warp_price_bench.h"
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
 #include "sim/util/process_memory.h"

@@ -1,6 +1,7 @@
 // Running one benchmark run: load the scene, build each method, trace the
 // workload with run_frame (the counting sinks simulate uses) on one thread and
-// on all threads, and collect the figures of issue 8.
+// on all threads, and collect the figures of issue 8; or time its per-ray and
+// warp execution against each other (compare_warp_price).
 #pragma once
 
 #include "core/sinks.h"
@@ -73,6 +74,16 @@ struct LoadedRun {
 [[nodiscard]] FrameResult bench_trace_frame(const BuiltMethod& method, const Geometry& g,
                                             const RayWorkload& frame, const TraceOptions& trace,
                                             unsigned threads, const CostModel* warp);
+
+// `bench --warp-price` (issue 39): what the SIMT model costs the simulator,
+// as a ratio measured side by side in one process. For each of a run's
+// methods, per-ray and warp traces of the same frame are timed alternately
+// (per-ray, warp, per-ray, ...), so that both see the same machine load, and
+// warp's time over per-ray's is taken pair by pair. Both must count the same
+// events and rays (the warp model only groups and prices what per-ray
+// tracing counts). Times `run` so under options.warp_preset and prints it;
+// returns false when the two executions' counts differ.
+[[nodiscard]] bool compare_warp_price(const BenchRun& run, const BenchOptions& options);
 
 // Median, smallest and largest of a non-empty list (alternated timings).
 struct Spread {
