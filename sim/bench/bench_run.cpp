@@ -71,11 +71,22 @@ ThreadRate time_traces(const BuiltMethod& method, const Geometry& g, const RayWo
     return method.run(g, frame, trace, fo);
 }
 
+namespace {
+
+// The preset `name` (--warp-preset), refused unless it models warps; `option`
+// names what needs it.
+CostModel load_warp_preset(const std::string& name, const char* option) {
+    CostModel m = load_cost_model(name);
+    if (!m.execution.warp())
+        throw InputError(name + ": /execution/model: bench " + option + " needs a warp preset");
+    return m;
+}
+
+}  // namespace
+
 bool compare_warp_price(const BenchRun& bench_run, const BenchOptions& o) {
     const LoadedRun run = load_run(bench_run);
-    const CostModel warp = load_cost_model(o.warp_preset);
-    if (!warp.execution.warp())
-        throw InputError(o.warp_preset + ": /execution/model: bench --warp-price needs a warp preset");
+    const CostModel warp = load_warp_preset(o.warp_preset, "--warp-price");
     std::printf("  %s: %zu primitives, %zu triangles; warp preset %s\n", bench_run.label.c_str(),
                 run.geometry.primitive_count(), run.geometry.triangles.size(), warp.name.c_str());
     bool same = true;
@@ -146,9 +157,7 @@ RunFigures run_bench(const BenchRun& run, const BenchOptions& o) {
     std::vector<unsigned> thread_counts;
     for (const unsigned t : o.threads) thread_counts.push_back(t ? t : hardware_threads());
     std::optional<CostModel> warp;
-    if (!o.warp_preset.empty()) warp = load_cost_model(o.warp_preset);
-    if (warp && !warp->execution.warp())
-        throw InputError(o.warp_preset + ": /execution/model: bench --execution warp needs a warp preset");
+    if (!o.warp_preset.empty()) warp = load_warp_preset(o.warp_preset, "--execution warp");
     const CostModel* warp_ptr = warp ? &*warp : nullptr;
 
     for (const std::string& name : c.methods) {
