@@ -249,9 +249,9 @@ TEST_CASE("call counts: every recorded call's counts are its own events, for eve
     d.radius = 0.02f;
     d.tilt_deg = 30.0f;
     std::mt19937 rng(7);
-    for (const PrimitiveKind kind :
-         {PrimitiveKind::Cylinder, PrimitiveKind::Capsule, PrimitiveKind::Link, PrimitiveKind::Phantom}) {
-        CAPTURE(static_cast<int>(kind));
+    for (std::size_t k = 0; k < kPrimitiveKindNames.size(); ++k) {  // every kind, a new one too
+        const auto kind = static_cast<PrimitiveKind>(k);
+        CAPTURE(kPrimitiveKindNames[k]);
         const Geometry g = make_geometry(make_bundle(d), kind, kind == PrimitiveKind::Phantom ? 2 : 1);
         const CameraFrame cam = camera_frame(auto_frame(geometry_bounds(g), 45.0f, 64, 64));
         std::visit(
