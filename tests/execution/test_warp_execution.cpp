@@ -57,13 +57,16 @@ struct TestFrame {
     RayWorkload workload;
 };
 
-TestFrame tilted_bundle(int width, int height) {
+// A bundle tilted 30 degrees, framed by the camera; phantom curves at 2
+// subdivisions.
+TestFrame tilted_bundle(int width, int height, PrimitiveKind kind = PrimitiveKind::Capsule, std::uint32_t count = 200,
+                        float radius = 0.004f) {
     BundleDesc d;
-    d.count = 200;
-    d.radius = 0.004f;
+    d.count = count;
+    d.radius = radius;
     d.tilt_deg = 30.0f;
     TestFrame f;
-    f.geometry = make_geometry(make_bundle(d), PrimitiveKind::Capsule, 1);
+    f.geometry = make_geometry(make_bundle(d), kind, kind == PrimitiveKind::Phantom ? 2 : 1);
     f.workload.camera = auto_frame(geometry_bounds(f.geometry), 45.0f, width, height);
     f.workload.path.spp = 2;
     f.workload.path.bounces = 2;
@@ -244,16 +247,13 @@ TEST_CASE("call counts: every recorded call's counts are its own events, for eve
     // are the sum of the counts recorded apart for each of its calls (a call
     // counted into the wrong slot, or an event missed or counted twice by
     // CallSink, breaks the sum).
-    BundleDesc d;
-    d.count = 40;
-    d.radius = 0.02f;
-    d.tilt_deg = 30.0f;
     std::mt19937 rng(7);
     for (std::size_t k = 0; k < kPrimitiveKindNames.size(); ++k) {  // every kind, a new one too
         const auto kind = static_cast<PrimitiveKind>(k);
         CAPTURE(kPrimitiveKindNames[k]);
-        const Geometry g = make_geometry(make_bundle(d), kind, kind == PrimitiveKind::Phantom ? 2 : 1);
-        const CameraFrame cam = camera_frame(auto_frame(geometry_bounds(g), 45.0f, 64, 64));
+        const TestFrame f = tilted_bundle(64, 64, kind, 40, 0.02f);
+        const Geometry& g = f.geometry;
+        const CameraFrame cam = camera_frame(f.workload.camera);
         std::visit(
             [&](const auto& prims) {
                 using Prim = typename std::decay_t<decltype(prims)>::value_type;
