@@ -92,7 +92,7 @@ def main():
     k = parse_ptxas(b / "ptxas.log")
     sass, f64 = {}, {}
     for prec in ("f64", "f32"):
-        for src in ("programs", "pipeline"):
+        for src in ("programs", "pipeline", "paths"):
             for name, v in sass_sizes(b / f"{src}_{prec}.cubin").items():
                 sass[(prec, name)] = v
             for name, n in ptx_f64(b / f"{src}_{prec}.ptx").items():
@@ -130,6 +130,14 @@ def main():
                 "fused_registers": fused, "warps_per_sm_fused": warps_by_regs(fused) if fused else None}
             print(f"{prec + '/' + p:28} {is_regs:7} {shade:5} {mx:4} {warps_by_regs(mx):8} "
                   f"{fused if fused else '-':>10} {warps_by_regs(fused) if fused else '-':>8}")
+    ilp = {prec: json.loads((b / f"ilp_{prec}.json").read_text()) for prec in ("f64", "f32")}
+    print("\n# Dependent chains per program path (PTX; scripts/registers/ilp.py, latencies in its LATENCY)")
+    print(f"{'precision/path':34} {'instr':>6} {'all-dep cyc':>11} {'chain cyc':>9} {'chain len':>9} {'ILP':>5} {'issue cyc':>9}  chain classes")
+    for prec in ("f64", "f32"):
+        for name, v in ilp[prec]["paths"].items():
+            cc = " ".join(f"{c}:{n}" for c, n in sorted(v["chain_by_class"].items(), key=lambda x: -x[1]))
+            print(f"{prec + '/' + name:34} {v['instructions']:6} {v['all_dependent_cycles']:11} "
+                  f"{v['chain_cycles']:9} {v['chain_length']:9} {v['ilp']:5} {v['issue_cycles']:9}  {cc}")
     print("\nwarps/SM: register limit alone, CC 7.5 (256-register units per warp, 4 sub-partitions of 16 K")
     print("registers, 32 warps max); with blocks of 1/2/4/8 warps (16 blocks max per SM) see the JSON.")
     if a.json:
@@ -139,7 +147,13 @@ def main():
             "source": f"[M] scripts/registers/measure: ptxas -v of {a.arch}, -O3, default maxrregcount, "
                       f"{a.nvcc_version.strip()}; SASS instructions = .text bytes / 16; occupancy by "
                       "cuda_occupancy.h's CC 7.5 rules (scripts/registers/occupancy.cpp)",
-            "kernels": kernels, "pipelines": pipelines}
+            "kernels": kernels, "pipelines": pipelines,
+            "chains": {"source": "[M/I] scripts/registers/ilp.py over the PTX of scripts/registers/paths.cu: "
+                                 "critical path of register dependences, each instruction at its class latency "
+                                 "(latency_cycles below; [I] for the class mapping)",
+                       "latency_cycles": ilp["f64"]["latency_cycles"],
+                       "issue_cycles": ilp["f64"]["issue_cycles"],
+                       "f64": ilp["f64"]["paths"], "f32": ilp["f32"]["paths"]}}
         path.write_text(json.dumps(doc, indent=1) + "\n")
 
 
