@@ -138,6 +138,14 @@ def main():
             cc = " ".join(f"{c}:{n}" for c, n in sorted(v["chain_by_class"].items(), key=lambda x: -x[1]))
             print(f"{prec + '/' + name:34} {v['instructions']:6} {v['all_dependent_cycles']:11} "
                   f"{v['chain_cycles']:9} {v['chain_length']:9} {v['ilp']:5} {v['issue_cycles']:9}  {cc}")
+    sass = {prec: json.loads((b / f"sass_{prec}.json").read_text()) for prec in ("f64", "f32")}
+    print("\n# The same paths as ptxas scheduled them (scripts/registers/sass.py: control bits of each SASS instruction)")
+    print(f"{'precision/path':34} {'SASS':>5} {'stall sum':>9} {'waits':>5} {'4 x issue':>9} {'PTX chain':>9}")
+    for prec in ("f64", "f32"):
+        for name, v in sass[prec].items():
+            c = ilp[prec]["paths"].get(name, {})
+            print(f"{prec + '/' + name:34} {v['sass_instructions']:5} {v['stall_sum_cycles']:9} "
+                  f"{v['barrier_waits']:5} {4 * c.get('issue_cycles', 0):9.0f} {c.get('chain_cycles', 0):9}")
     print("\nwarps/SM: register limit alone, CC 7.5 (256-register units per warp, 4 sub-partitions of 16 K")
     print("registers, 32 warps max); with blocks of 1/2/4/8 warps (16 blocks max per SM) see the JSON.")
     if a.json:
@@ -153,7 +161,13 @@ def main():
                                  "(latency_cycles below; [I] for the class mapping)",
                        "latency_cycles": ilp["f64"]["latency_cycles"],
                        "issue_cycles": ilp["f64"]["issue_cycles"],
-                       "f64": ilp["f64"]["paths"], "f32": ilp["f32"]["paths"]}}
+                       "f64": ilp["f64"]["paths"], "f32": ilp["f32"]["paths"]},
+            "sass_schedule": {"source": "[M] scripts/registers/sass.py: per path kernel, SASS instructions, the sum "
+                                        "of ptxas's stall counts (a lone warp's fixed-latency schedule) and the "
+                                        "instructions that wait on a scoreboard barrier, read from the control "
+                                        "bits of each 128-bit instruction; static, so slow-path code of divisions "
+                                        "and square roots is included",
+                              "f64": sass["f64"], "f32": sass["f32"]}}
         path.write_text(json.dumps(doc, indent=1) + "\n")
 
 
