@@ -103,6 +103,12 @@ def main():
         v.update(sass_instructions=n_sass, ptx_f64_ops=f64.get((prec, name)))
         assert regs_elf in (None, v["registers"]), (name, regs_elf, v)
         kernels[f"{prec}/{name}"] = v
+    # The float variant must be float: any f64 instruction left in a program
+    # or path kernel means devicify.py missed a double.
+    stray = [n for n, v in kernels.items()
+             if n.startswith("f32/") and not n.startswith("f32/pt_") and v["ptx_f64_ops"]]
+    if stray:
+        raise SystemExit(f"f64 instructions left in the float variant: {stray}")
     occ = occupancy(a.occ, {n: v["registers"] for n, v in kernels.items()})
     for n, v in kernels.items():
         v["warps_per_sm_by_regs"] = warps_by_regs(v["registers"])
@@ -165,8 +171,9 @@ def main():
             "sass_schedule": {"source": "[M] scripts/registers/sass.py: per path kernel, SASS instructions, the sum "
                                         "of ptxas's stall counts (a lone warp's fixed-latency schedule) and the "
                                         "instructions that wait on a scoreboard barrier, read from the control "
-                                        "bits of each 128-bit instruction; static, so slow-path code of divisions "
-                                        "and square roots is included",
+                                        "bits of each 128-bit instruction, up to the kernel's first EXIT (the "
+                                        "division and square-root slow-path subroutines after it excluded; "
+                                        "with_subroutines counts them); both sides of short branches included",
                               "f64": sass["f64"], "f32": sass["f32"]}}
         path.write_text(json.dumps(doc, indent=1) + "\n")
 
