@@ -28,9 +28,17 @@ py::dict execution_dict(const ExecutionModel& e) {
     return d;
 }
 
-py::dict warp_dict(const WarpTotals& w, int width) {
+py::dict warp_dict(const WarpTotals& w, int width, const Roofline& roof) {
     py::dict d;
-    d["cycles"] = w.cycles();
+    const FrameTerms t = w.terms(roof);
+    d["cycles"] = t.cycles;
+    d["bound"] = bound_name(t.bound);
+    if (roof.enabled) {
+        d["resident_warps"] = roof.warps;
+        d["sm_latency"] = t.latency;
+        d["sm_issue"] = t.issue;
+        d["sm_rt_unit"] = t.rt_unit;
+    }
     d["shader"] = w.shader;
     d["rt_unit"] = w.rt;
     d["hand_off"] = w.handoff;
@@ -107,7 +115,7 @@ void bind_cost(py::module_& m) {
                                "Per-ray-model cycles of each event, in EVENT_NAMES order.")
         .def_property_readonly("warp", [](const Priced& p) -> py::object {
             if (!p.warp) return py::none();
-            return warp_dict(*p.warp, p.warp_width);
+            return warp_dict(*p.warp, p.warp_width, p.roof);
         }, "The warp model's figures (waves, rounds, SIMT efficiency, cycles by unit), or None.")
         .def("__repr__", [](const Priced& p) {
             return "<PricedRun " + std::to_string(p.run.total_cycles) + " cycles (" +

@@ -71,10 +71,12 @@ Priced reprice(const MethodHandle& h, const CostModel& model) {
                                         "so trace with record_warps=True and a warp preset in the run");
         if (!h.run->warp_grouping || !h.run->warp_grouping->same_grouping(model.execution))
             throw std::invalid_argument(model.name + " groups rays into other warps than the run traced");
+        const MethodEntry* e = find_method(m.method);
+        p.roof = method_roofline(model, h.run->config, e ? e->info.needs : std::vector<std::string>{});
         py::gil_scoped_release release;
         p.warp = m.frame.warp_trace.price(model);
         p.warp_width = model.execution.warp_width;
-        p.run.total_cycles = p.warp->cycles();
+        p.run.total_cycles = p.warp->cycles(p.roof);
     }
     if (const MethodEntry* e = find_method(m.method)) p.run.missing_feature = model.missing_feature(e->info.needs);
     p.run.supported = p.run.missing_feature.empty();
@@ -129,8 +131,9 @@ void bind_method(py::module_& m) {
             const MethodRun& r = h.method();
             std::vector<Priced> out;
             for (std::size_t p = 0; p < r.priced.size(); ++p) {
-                Priced x{r.priced[p], std::nullopt, h.run->costs[p].execution.warp_width};
+                Priced x{r.priced[p], std::nullopt, h.run->costs[p].execution.warp_width, {}};
                 if (r.priced[p].execution == ExecutionKind::Warp && p < r.warp.size()) x.warp = r.warp[p];
+                if (p < r.roof.size()) x.roof = r.roof[p];
                 out.push_back(x);
             }
             return out;

@@ -2,6 +2,8 @@
 
 #include "core/input_error.h"
 #include "sim/config/run_config.h"
+#include "sim/methods/method.h"
+#include "sim/run/simulation.h"
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
 
@@ -34,6 +36,7 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     out.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
     const CalibrateDesc& desc = out.desc;
     std::vector<CalibrationRun> fit_runs;
+    std::vector<const RunResult*> fit_results;  // each fit run's RunResult
     for (RunResult* r : runs) {
         const std::string label = label_of(*r);
         const CalibrationTarget* target = find_target(desc, r->point.values, label);
@@ -44,12 +47,13 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
             continue;
         }
         CalibrationRun run{label, ref->frame.totals, obb->frame.totals, nullptr, nullptr, target->speedup,
-                           target->weight};
+                           target->weight, {}, {}};
         if (warps && ref->frame.warp_trace.waves() > 0 && obb->frame.warp_trace.waves() > 0) {
             run.ref_warps = warps(*r, *ref);
             run.obb_warps = warps(*r, *obb);
         }
         fit_runs.push_back(std::move(run));
+        fit_results.push_back(r);
     }
     std::vector<nlohmann::json> values;
     std::vector<std::string> labels;
@@ -77,6 +81,16 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
                     throw InputError(file + ": /calibrate/parameters/" + std::to_string(i) + "/events/" +
                                      std::to_string(k) + ": " + std::string(event_name(e)) + " is a sum of other costs in \"" +
                                      start.name + "\" (sum_of): fit its terms instead");
+        // The fit prices every run on the start preset's SM, for the run's
+        // pipeline (the ref and fitted methods run the same programs).
+        for (std::size_t i = 0; i < fit_runs.size(); ++i) {
+            const RunResult& r = *fit_results[i];
+            const MethodEntry* ref = find_method(r.baseline()->method);
+            const MethodEntry* fitted = find_method(desc.method);
+            fit_runs[i].ref_roof = method_roofline(start, r.config, ref ? ref->info.needs : std::vector<std::string>{});
+            fit_runs[i].obb_roof =
+                method_roofline(start, r.config, fitted ? fitted->info.needs : std::vector<std::string>{});
+        }
         out.result = calibrate(fit_runs, start, desc.parameters, calibration_options(desc));
         // What it was fitted on, so runs at another resolution are told.
         const WorkloadDesc& w = runs.front()->config.workload;

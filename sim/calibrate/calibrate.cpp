@@ -97,8 +97,8 @@ void relinearize(std::vector<Row>& rows, const Vec& theta, const FitContext& fit
         if (!row.warp_run) continue;
         if (!made) m = model_at(fit, theta), made = true;
         EffectiveCounts er{}, eo{};
-        (void)row.warp_run->ref_warps->price(m, &er);
-        (void)row.warp_run->obb_warps->price(m, &eo);
+        (void)row.warp_run->ref_warps->price(m, row.warp_run->ref_roof, er);
+        (void)row.warp_run->obb_warps->price(m, row.warp_run->obb_roof, eo);
         row.ref = make_side(EffectiveView{er}, fit.start, fit.params, fit.owner);
         row.obb = make_side(EffectiveView{eo}, fit.start, fit.params, fit.owner);
     }
@@ -251,7 +251,7 @@ struct LmOutcome {
 
 double predicted_speedup(const CalibrationRun& run, const CostModel& model) {
     if (model.execution.warp() && run.ref_warps && run.obb_warps)
-        return run.ref_warps->price(model).cycles() / run.obb_warps->price(model).cycles();
+        return run.ref_warps->price(model).cycles(run.ref_roof) / run.obb_warps->price(model).cycles(run.obb_roof);
     return price(run.ref, model).total_cycles / price(run.obb, model).total_cycles;
 }
 

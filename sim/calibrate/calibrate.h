@@ -32,6 +32,8 @@ struct CalibrationRun {
     std::shared_ptr<const WarpTrace> ref_warps, obb_warps;
     double target_speedup = 1.0;  // cycles(ref) / cycles(obb) to reproduce; > 0
     double weight = 1.0;          // >= 0
+    // The SM each method's waves run on (its pipeline's resident warps).
+    Roofline ref_roof = {}, obb_roof = {};
 };
 
 // How the events of one FitParameter share the fitted number.

@@ -60,6 +60,16 @@ void load_presets(RunConfig& c, PresetCache& cache) {
             throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name +
                              " groups rays into other warps (warp_width, tile) than " + c.costs[0]->name +
                              "; presets of one run must share them");
+        // The SM needs the register footprint of this run's pipelines (with
+        // and without its intersection program) before anything is traced.
+        if (cost.execution.sm.enabled) {
+            try {
+                for (const bool programs : {true, false})
+                    (void)cost.execution.sm.pipeline_registers(pipeline_program(c.kind, c.trace.phantom.program, programs));
+            } catch (const std::invalid_argument& e) {
+                throw InputError(c.file + ": /cost/" + std::to_string(p) + ": " + cost.name + ": " + e.what());
+            }
+        }
     }
     for (const BreakEvenSpec& spec : c.break_even) {
         const CostModel* base = nullptr;

@@ -9,7 +9,7 @@ namespace rtc {
 const char* execution_name(ExecutionKind k) { return k == ExecutionKind::Warp ? "warp" : "per_ray"; }
 
 ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& base) {
-    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events"});
+    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events", "sm"});
     ExecutionModel m = base;
     const auto entry = [&](std::string_view key) {
         const JsonReader e = r.child(key);
@@ -61,6 +61,10 @@ ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& 
                 e.fail(key, std::string(event_name(*ev)) + " is listed twice");
             m.lockstep_events.push_back(*ev);
         }
+    }
+    if (r.has("sm")) {
+        m.sm = parse_sm_model(r.child("sm"), base.sm);
+        if (!m.warp()) r.fail("sm", "the SM model needs the warp model (\"model\": \"warp\")");
     }
     if (!m.lockstep_events.empty() && !m.warp())
         r.fail("lockstep_events", "lockstep events need the warp model (\"model\": \"warp\")");

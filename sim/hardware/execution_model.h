@@ -22,6 +22,7 @@
 #pragma once
 
 #include "core/events.h"
+#include "sim/hardware/sm_model.h"
 
 #include <cstdint>
 #include <string>
@@ -42,6 +43,9 @@ struct ExecutionModel {
     // RT-unit events this machine runs as shader code in lockstep (empty on
     // NVIDIA, whose RT core traverses on its own).
     std::vector<Event> lockstep_events;
+    // The SM around the warps (sm_model.h): resident warps hide latency.
+    // Disabled: each wave priced alone and summed.
+    SmModel sm;
     std::vector<std::pair<std::string, std::string>> sources;  // key -> provenance
 
     [[nodiscard]] bool warp() const { return kind == ExecutionKind::Warp; }
@@ -54,7 +58,8 @@ struct ExecutionModel {
 // Reads the optional "execution" block of a cost preset:
 // {"model": {"value": "warp", "source": ...}, "warp_width": {...},
 //  "tile": {"value": [8, 4], ...}, "rt_parallel_lanes": {...},
-//  "lockstep_events": {"value": ["tlas_node_visit", ...], ...}.
+//  "lockstep_events": {"value": ["tlas_node_visit", ...], ...},
+//  "sm": {...} (parse_sm_model)}.
 // Keys absent from the block keep `base`'s values (a derived preset's
 // execution block overrides its base's key by key).
 [[nodiscard]] ExecutionModel parse_execution_model(const JsonReader& block, const ExecutionModel& base = {});

@@ -146,6 +146,12 @@ void add_program_counts(EffectiveCounts& eff, const ProgramCounts& call) {
     for (std::size_t k = 0; k < kProgramEventCount; ++k) eff[kProgramEvents[k]] += call.n[k];
 }
 
+void add_rt_lane_counts(EffectiveCounts& counts, const WaveWork& wave, const CostModel& m) {
+    for (const LaneWork& l : wave.lanes) add_counts(counts, l.counts, kRtEvents, 1.0);
+    for (const Event e : m.execution.lockstep_events)
+        for (const LaneWork& l : wave.lanes) counts[static_cast<std::size_t>(e)] -= static_cast<double>(l.counts[e]);
+}
+
 void ProgramPrices::extend(const CallProfiles& table, CallProfiles::Id id, const CostModel& m) {
     while (price_.size() <= id) price_.push_back(program_price(table[static_cast<CallProfiles::Id>(price_.size())], m));
 }
@@ -283,6 +289,62 @@ WarpTotals& WarpTotals::operator+=(const WarpTotals& o) {
     rounds += o.rounds;
     active_lane_rounds += o.active_lane_rounds;
     return *this;
+}
+
+namespace {
+
+// Events priced as the SM's own instructions (shading and program rounds):
+// issue cycles, which a lone warp waits latency_per_issue times over.
+bool sm_code(std::size_t e) {
+    return kEventUnits[e] == EventUnit::Program || kEventUnits[e] == EventUnit::Shader;
+}
+
+}  // namespace
+
+const char* bound_name(FrameTerms::Bound b) {
+    switch (b) {
+        case FrameTerms::Bound::Sum: return "sum";
+        case FrameTerms::Bound::Latency: return "latency";
+        case FrameTerms::Bound::Issue: return "issue";
+        case FrameTerms::Bound::RtUnit: return "rt_unit";
+    }
+    return "sum";
+}
+
+FrameTerms WarpTotals::terms(const Roofline& roof) const {
+    FrameTerms t;
+    if (!roof.enabled) {
+        t.cycles = lone_wave_cycles();
+        return t;
+    }
+    // The SM's own code (shading, program rounds) is priced at issue cost;
+    // a lone warp waits latency_per_issue times that. The waves' latencies
+    // are hidden by the resident warps.
+    t.latency = (roof.latency_per_issue * (shader + programs) + rt + handoff) / roof.warps;
+    t.issue = shader + programs;
+    t.rt_unit = rt_lane_sum / roof.rt_unit_lanes;
+    t.cycles = t.latency, t.bound = FrameTerms::Bound::Latency;
+    if (t.issue > t.cycles) t.cycles = t.issue, t.bound = FrameTerms::Bound::Issue;
+    if (t.rt_unit > t.cycles) t.cycles = t.rt_unit, t.bound = FrameTerms::Bound::RtUnit;
+    return t;
+}
+
+void roofline_counts(const WarpTotals& totals, const Roofline& roof, EffectiveCounts& waves,
+                     const EffectiveCounts& rt_lanes) {
+    switch (totals.terms(roof).bound) {
+        case FrameTerms::Bound::Sum: return;
+        case FrameTerms::Bound::Latency:
+            for (std::size_t e = 0; e < kEventCount; ++e)
+                waves[e] *= (sm_code(e) ? roof.latency_per_issue : 1.0) / roof.warps;
+            return;
+        case FrameTerms::Bound::Issue:
+            for (std::size_t e = 0; e < kEventCount; ++e)
+                if (!sm_code(e)) waves[e] = 0.0;
+            return;
+        case FrameTerms::Bound::RtUnit:
+            for (std::size_t e = 0; e < kEventCount; ++e) waves[e] = rt_lanes[e] / roof.rt_unit_lanes;
+            return;
+    }
 }
 
 double WarpTotals::simt_efficiency(int w) const {

@@ -7,6 +7,7 @@
 #include "core/uninitialized.h"
 #include "sim/hardware/call_profiles.h"
 #include "sim/hardware/cost_model.h"
+#include "sim/hardware/sm_model.h"
 
 #include <array>
 #include <cstdint>
@@ -75,10 +76,25 @@ using EffectiveCounts = std::array<double, kEventCount>;
 [[nodiscard]] WavePrice price_wave_reference(const WaveWork& wave, const CostModel& model, ProgramPrices& prices,
                                              EffectiveCounts* effective = nullptr);
 
+// Adds every lane's RT-unit event counts (without the preset's lockstep
+// events, which the wave runs as shader code) to `counts`: the effective
+// counts of the waves' rt_lane_sum.
+void add_rt_lane_counts(EffectiveCounts& counts, const WaveWork& wave, const CostModel& model);
+
 // The price of one call profile's program events, and its counts added to
 // effective counts.
 [[nodiscard]] double program_price(const ProgramCounts& call, const CostModel& model);
 void add_program_counts(EffectiveCounts& effective, const ProgramCounts& call);
+
+// A frame's waves on one SM's resources (sm_model.h): the three roofline
+// terms, the cycles (the largest, or the lone-wave sum when the roofline is
+// disabled) and which term bound them.
+struct FrameTerms {
+    enum class Bound : std::uint8_t { Sum, Latency, Issue, RtUnit };
+    double latency = 0.0, issue = 0.0, rt_unit = 0.0, cycles = 0.0;
+    Bound bound = Bound::Sum;
+};
+[[nodiscard]] const char* bound_name(FrameTerms::Bound b);
 
 // Sums over many waves, for one preset.
 struct WarpTotals {
@@ -88,7 +104,11 @@ struct WarpTotals {
 
     void add(const WavePrice& p, std::size_t active_lanes);
     WarpTotals& operator+=(const WarpTotals& o);
-    [[nodiscard]] double cycles() const { return shader + rt + handoff + programs; }
+    // Every wave priced alone and added up (the model without an SM).
+    [[nodiscard]] double lone_wave_cycles() const { return shader + rt + handoff + programs; }
+    // The frame's cycles on the SM of `roof` (its pipeline's resident warps).
+    [[nodiscard]] FrameTerms terms(const Roofline& roof) const;
+    [[nodiscard]] double cycles(const Roofline& roof) const { return terms(roof).cycles; }
     // Active lanes per IS round over the warp width (Nsight's "active threads
     // per warp" for the program phase); 1 when no round ran.
     [[nodiscard]] double simt_efficiency(int warp_width) const;
@@ -97,5 +117,12 @@ struct WarpTotals {
     // Active lanes per wave over W (idle lanes: ended paths, partial tiles).
     [[nodiscard]] double occupancy(int warp_width) const;
 };
+
+// Effective counts of a whole frame under `roof`: `waves` are the waves'
+// own (price_wave's, summed), `rt_lanes` every lane's RT-unit event counts
+// (without the machine's lockstep events), summed. Turns `waves` into the
+// counts whose linear price is the binding term of totals.terms(roof).
+void roofline_counts(const WarpTotals& totals, const Roofline& roof, EffectiveCounts& waves,
+                     const EffectiveCounts& rt_lanes);
 
 }  // namespace rtc

@@ -43,7 +43,16 @@ std::size_t WarpTrace::memory_bytes() const {
 
 // Rebuilds each wave from the compact arrays and prices it with price_wave,
 // the function frames use while tracing, so both agree by construction.
-WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
+WarpTotals WarpTrace::price(const CostModel& m) const { return price_waves(m, nullptr, nullptr); }
+
+WarpTotals WarpTrace::price(const CostModel& m, const Roofline& roof, EffectiveCounts& eff) const {
+    EffectiveCounts rt_lanes{};
+    const WarpTotals totals = price_waves(m, &eff, roof.enabled ? &rt_lanes : nullptr);
+    roofline_counts(totals, roof, eff, rt_lanes);
+    return totals;
+}
+
+WarpTotals WarpTrace::price_waves(const CostModel& m, EffectiveCounts* eff, EffectiveCounts* rt_lanes) const {
     WarpTotals totals;
     ProgramPrices prices;
     WaveWork wave;
@@ -62,6 +71,7 @@ WarpTotals WarpTrace::price(const CostModel& m, EffectiveCounts* eff) const {
         wave.calls.assign(call_profile_.begin() + static_cast<std::ptrdiff_t>(c0),
                           call_profile_.begin() + static_cast<std::ptrdiff_t>(c1));
         totals.add(price_wave(wave, m, prices, eff), wave.lanes.size());
+        if (rt_lanes) add_rt_lane_counts(*rt_lanes, wave, m);
     }
     return totals;
 }

@@ -28,10 +28,16 @@ public:
     [[nodiscard]] std::size_t memory_bytes() const;
 
     // Cycles of every wave under `model` (its execution parameters and
-    // costs), and the effective counts that reproduce them linearly.
-    [[nodiscard]] WarpTotals price(const CostModel& model, EffectiveCounts* effective = nullptr) const;
+    // costs).
+    [[nodiscard]] WarpTotals price(const CostModel& model) const;
+    // The same, and the effective counts whose linear price is the frame's
+    // cycles on the SM of `roof` (totals.cycles(roof)).
+    [[nodiscard]] WarpTotals price(const CostModel& model, const Roofline& roof, EffectiveCounts& effective) const;
 
 private:
+    // Every wave priced; `eff` (if set) gets their effective counts, and
+    // `rt_lanes` (if set) every lane's RT-unit counts.
+    [[nodiscard]] WarpTotals price_waves(const CostModel& model, EffectiveCounts* eff, EffectiveCounts* rt_lanes) const;
     [[nodiscard]] std::uint32_t calls_of(std::size_t lane) const {
         const std::size_t end = lane + 1 < lane_first_call_.size() ? lane_first_call_[lane + 1] : call_profile_.size();
         return static_cast<std::uint32_t>(end - lane_first_call_[lane]);

@@ -44,10 +44,12 @@ double axis_value(const BreakEvenAxis& a, int i, int n) {
 
 }  // namespace
 
-std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset) {
+std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset,
+                                                  const Roofline& roof) {
     std::array<double, kEventCount> c{};
     if (warp_preset) {
-        (void)m.frame.warp_trace.price(*warp_preset, &c);
+        // On the SM of the method's pipeline, as the run priced it.
+        (void)m.frame.warp_trace.price(*warp_preset, roof, c);
     } else {
         for (std::size_t i = 0; i < kEventCount; ++i) c[i] = static_cast<double>(m.frame.totals.n[i]);
     }
@@ -88,7 +90,11 @@ BreakEvenGrid break_even_grid(const RunResult& run, const BreakEvenSpec& spec) {
     for (const MethodRun* m : methods) warp = warp && (!m || m->frame.warp_trace.waves() > 0);
     std::vector<EffectiveCounts> linear(methods.size(), EffectiveCounts{});
     for (std::size_t k = 0; k < methods.size(); ++k)
-        if (methods[k]) linear[k] = break_even_counts(*methods[k], warp ? base : nullptr);
+        if (methods[k]) {
+            const auto p = static_cast<std::size_t>(base - run.costs.data());
+            linear[k] = break_even_counts(*methods[k], warp ? base : nullptr,
+                                          p < methods[k]->roof.size() ? methods[k]->roof[p] : Roofline{});
+        }
     g.caption += warp ? "\ncycles: warp model, first order around the mark (exact there)" : "\ncycles: per-ray sum of every ray's events";
     g.has_mark = true;
     g.mark_x = spec.x.scale ? 1.0 : (*base)[spec.x.events.front()];

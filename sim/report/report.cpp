@@ -78,7 +78,7 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
             entry["execution"] = "warp";
             entry["per_ray_model_total"] = pr.per_ray_cycles;
             entry["warp"] = {{"waves", w.waves},
-                             {"cycles_per_wave", w.cycles() / waves},
+                             {"cycles_per_wave", pr.total_cycles / waves},
                              {"rounds_per_wave", static_cast<double>(w.rounds) / waves},
                              {"active_lanes_per_wave", static_cast<double>(w.lanes) / waves},
                              {"simt_efficiency", w.simt_efficiency(width)},
@@ -86,6 +86,21 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
                              {"occupancy", w.occupancy(width)},
                              {"breakdown", {{"shader", w.shader}, {"rt_unit", w.rt},
                                             {"hand_off", w.handoff}, {"programs", w.programs}}}};
+            if (p < m.roof.size() && m.roof[p].enabled) {
+                // The SM the waves ran on (sm_model.h): its roofline terms
+                // over the frame, and which one bound the cycles.
+                const Roofline& roof = m.roof[p];
+                const FrameTerms t = w.terms(roof);
+                entry["sm"] = {{"registers_per_thread", roof.registers},
+                               {"resident_warps", roof.warps},
+                               {"latency_per_issue", roof.latency_per_issue},
+                               {"rt_unit_lanes", roof.rt_unit_lanes},
+                               {"bound", bound_name(t.bound)},
+                               {"latency", t.latency},
+                               {"issue", t.issue},
+                               {"rt_unit", t.rt_unit},
+                               {"lone_wave_sum", w.lone_wave_cycles()}};
+            }
         }
         cycles[run.costs[p].name] = entry;
     }

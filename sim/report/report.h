@@ -69,7 +69,9 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
 // it: given a warp preset (whose waves the run recorded), the effective
 // counts of the method's waves at that preset's own costs (exact there,
 // first order around it); given none, its event totals (the per-ray sum).
-[[nodiscard]] std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset);
+// On the SM of `roof` (the method's pipeline under the preset, MethodRun::roof).
+[[nodiscard]] std::array<double, kEventCount> break_even_counts(const MethodRun& m, const CostModel* warp_preset,
+                                                              const Roofline& roof);
 // One map's cells (what write_break_even_maps draws): per cell the cheapest
 // method, its lead, and the lead's 90 % band over the run's draws of the
 // preset (uncertainty.draws, same seed as the speedup intervals), each draw

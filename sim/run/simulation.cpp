@@ -83,11 +83,14 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
                   const std::vector<std::size_t>& warp_index, const Draws& draws) {
     m.priced.clear();
     m.warp.clear();
+    m.roof.clear();
+    for (const CostModel& cost : r.costs) m.roof.push_back(method_roofline(cost, r.config, method.info.needs));
     m.draw_cycles.assign(r.costs.size(), {});
     for (std::size_t k = 0; k < r.costs.size(); ++k)
         for (std::size_t d = 0; d < draws.models[k].size(); ++d)
-            m.draw_cycles[k].push_back(draws.warp_slot[k] != SIZE_MAX ? m.frame.warp[draws.warp_slot[k] + d].cycles()
-                                                                     : price(m.frame.totals, draws.models[k][d]).total_cycles);
+            m.draw_cycles[k].push_back(draws.warp_slot[k] != SIZE_MAX
+                                           ? m.frame.warp[draws.warp_slot[k] + d].cycles(m.roof[k])
+                                           : price(m.frame.totals, draws.models[k][d]).total_cycles);
     for (std::size_t k = 0; k < r.costs.size(); ++k) {
         const CostModel& cost = r.costs[k];
         PricedRun p = price(m.frame.totals, cost);
@@ -95,7 +98,7 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
         m.warp.emplace_back();
         if (warp_index[k] != SIZE_MAX) {
             m.warp.back() = m.frame.warp[warp_index[k]];
-            p.total_cycles = m.warp.back().cycles();
+            p.total_cycles = m.warp.back().cycles(m.roof[k]);
         }
         p.missing_feature = cost.missing_feature(method.info.needs);
         p.supported = p.missing_feature.empty();
@@ -110,6 +113,16 @@ std::size_t old_warp_presets(const std::vector<std::size_t>& warp_index) {
 }
 
 }  // namespace
+
+Roofline method_roofline(const CostModel& cost, const RunConfig& r, const std::vector<std::string>& needs) {
+    const bool runs_programs = std::find(needs.begin(), needs.end(), "custom_primitives") != needs.end();
+    try {
+        return roofline(cost.execution.sm, pipeline_program(r.kind, r.trace.phantom.program, runs_programs),
+                        cost.execution.warp_width);
+    } catch (const std::invalid_argument& e) {
+        throw InputError("cost preset " + cost.name + ": " + e.what());
+    }
+}
 
 const MethodRun* RunResult::find(std::string_view name) const {
     for (const MethodRun& r : methods)

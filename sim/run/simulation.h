@@ -32,11 +32,16 @@ struct MethodRun {
     FrameResult frame;
     std::vector<PricedRun> priced;     // one per cost preset, in config order
     std::vector<WarpTotals> warp;      // per cost preset: the warp model's figures (warp presets only)
+    std::vector<Roofline> roof;        // per cost preset: the SM its waves are priced on (sm_model.h)
     // Per cost preset: total cycles under each cost model drawn from its
     // uncertainty block (empty: the preset has none, or draws are off).
     std::vector<std::vector<double>> draw_cycles;
     MemoryBreakdown memory;
 };
+
+// The SM roofline of `method`'s pipeline under `cost` in run `r` (disabled
+// for presets without an SM block).
+[[nodiscard]] Roofline method_roofline(const CostModel& cost, const RunConfig& r, const std::vector<std::string>& needs);
 
 struct RunResult {
     RunConfig config;

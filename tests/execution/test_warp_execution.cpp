@@ -141,8 +141,8 @@ TEST_CASE("warp execution: same counts and hits as per ray, records re-price exa
         CHECK(warp1.radiance == per_ray.radiance);
         // Threads change nothing.
         REQUIRE(warp2.warp.size() == 2);
-        CHECK(warp2.warp[0].cycles() == warp1.warp[0].cycles());
-        CHECK(warp2.warp[1].cycles() == warp1.warp[1].cycles());
+        CHECK(warp2.warp[0].lone_wave_cycles() == warp1.warp[0].lone_wave_cycles());
+        CHECK(warp2.warp[1].lone_wave_cycles() == warp1.warp[1].lone_wave_cycles());
         CHECK(warp2.pixel_warp_cycles == warp1.pixel_warp_cycles);
         CHECK(warp2.pixel_simt_active == warp1.pixel_simt_active);
         // One wave per tile, sample and bounce that had rays.
@@ -152,21 +152,21 @@ TEST_CASE("warp execution: same counts and hits as per ray, records re-price exa
         CHECK(warp1.warp_trace.waves() == warp1.warp[0].waves);
         for (const CostModel* m : {&a, &b}) {
             EffectiveCounts eff{};
-            const WarpTotals again = warp1.warp_trace.price(*m, &eff);
+            const WarpTotals again = warp1.warp_trace.price(*m, Roofline{}, eff);
             const WarpTotals& live = warp1.warp[m == &a ? 0 : 1];
-            CHECK(again.cycles() == doctest::Approx(live.cycles()).epsilon(1e-12));
+            CHECK(again.lone_wave_cycles() == doctest::Approx(live.lone_wave_cycles()).epsilon(1e-12));
             CHECK(again.rounds == live.rounds);
             CHECK(again.active_lane_rounds == live.active_lane_rounds);
             double linear = 0.0;
             for (std::size_t e = 0; e < kEventCount; ++e) linear += eff[e] * m->cycles[e];
-            CHECK(linear == doctest::Approx(again.cycles()).epsilon(1e-9));
+            CHECK(linear == doctest::Approx(again.lone_wave_cycles()).epsilon(1e-9));
         }
         // Warps pay their slowest lane: never less than the per-ray sum over W lanes in parallel.
         CHECK(warp1.warp[0].simt_efficiency(32) <= 1.0);
         CHECK(warp1.warp[0].simt_efficiency(32) > 0.0);
         double pixel_sum = 0.0;
         for (const float c : warp1.pixel_warp_cycles) pixel_sum += c;
-        CHECK(pixel_sum == doctest::Approx(warp1.warp[0].cycles()).epsilon(1e-4));
+        CHECK(pixel_sum == doctest::Approx(warp1.warp[0].lone_wave_cycles()).epsilon(1e-4));
     }
 }
 

@@ -71,25 +71,31 @@ TEST_CASE("architecture: every sim/ folder includes only the folders below it") 
     CHECK(seen.size() == kAllowed.size());
 }
 
-TEST_CASE("architecture: files stay under ~400 lines and folders under ~15 files") {
+// Sizes are guidance, not budgets (../shared/docs/design.md: split by
+// concept, never to meet a count): files over ~400 lines and folders over
+// ~15 files are reported, for a reader to judge, and fail nothing.
+TEST_CASE("architecture: files over ~400 lines and folders over ~15 files are reported") {
+    int reported = 0, sources = 0;
     for (const char* top : {"sim", "core", "intersectors", "scenes", "tests", "python"}) {
         if (!fs::exists(kRoot / top)) continue;
         for (const auto& e : fs::recursive_directory_iterator(kRoot / top)) {
             const std::string rel = fs::relative(e.path(), kRoot).string();
-            CAPTURE(rel);
             if (rel.find("__pycache__") != std::string::npos) continue;
             if (e.is_directory() && (std::string(top) == "sim" || std::string(top) == "python")) {
                 int files = 0;
                 for (const auto& f : fs::directory_iterator(e.path())) files += f.is_regular_file();
-                CHECK(files <= 16);  // ~15 plus the folder's CMakeLists.txt
+                if (files > 16) MESSAGE(rel << ": " << files << " files (guidance ~15)"), ++reported;
             }
             if (!e.is_regular_file() || !is_source(e.path())) continue;
+            ++sources;
             std::ifstream in(e.path());
             int lines = 0;
             for (std::string l; std::getline(in, l);) ++lines;
-            CHECK(lines <= 420);
+            if (lines > 420) MESSAGE(rel << ": " << lines << " lines (guidance ~400)"), ++reported;
         }
     }
+    MESSAGE(reported << " files or folders over the guidance");
+    CHECK(sources > 100);  // the walk found the tree (a wrong root would report nothing)
 }
 
 TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed plan of sim/config)") {

@@ -214,16 +214,16 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
         const std::vector<CostModel> draws = draw_cost_models(r.costs[p], 8, 3);
         for (const MethodRun& m : r.methods) {
             CAPTURE(m.method);
-            CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles()).epsilon(1e-12));
+            CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles(m.roof[p])).epsilon(1e-12));
             // Break-even maps price a method linearly around the preset: exact at it.
             REQUIRE(m.frame.warp_trace.waves() > 0);  // recorded (record_warps)
             CHECK(r.costs[p].execution.warp());
-            const auto linear = break_even_counts(m, &r.costs[p]);
+            const auto linear = break_even_counts(m, &r.costs[p], m.roof[p]);
             double at_preset = 0.0;
             for (std::size_t i = 0; i < kEventCount; ++i) at_preset += linear[i] * r.costs[p].cycles[i];
             CHECK(at_preset == doctest::Approx(m.priced[p].total_cycles).epsilon(1e-12));
             for (std::size_t d = 0; d < draws.size(); ++d)
-                CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles()).epsilon(1e-12));
+                CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles(m.roof[p])).epsilon(1e-12));
         }
     }
 }

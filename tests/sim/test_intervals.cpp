@@ -97,7 +97,7 @@ TEST_CASE("intervals: per-ray and warp presets, thread counts, covariance scale,
     const std::vector<CostModel> draws = draw_cost_models(r.one.costs[1], 32, 3);
     for (const MethodRun& m : r.one.methods)
         for (std::size_t d = 0; d < draws.size(); ++d)
-            CHECK(m.draw_cycles[1][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles()).epsilon(1e-12));
+            CHECK(m.draw_cycles[1][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles(m.roof[1])).epsilon(1e-12));
     CHECK_FALSE(r.one.speedup_interval("obb", 2));
     CHECK(r.one.no_interval_reason(2) == "no covariance in the preset (a guess): no interval");
     // A quarter of the covariance: about half the width (the same normals, halved).

@@ -181,18 +181,35 @@ std::vector<CostModel> draw_cost_models(const CostModel& model, std::size_t n, s
     Normals normals(seed);
     std::vector<double> g(m), z(m);
     out.reserve(n);
+    // Whether the draw z puts every free parameter inside its bounds.
+    const auto inside = [&] {
+        std::size_t f = 0;
+        for (const UncertainParameter& p : u.parameters) {
+            if (!p.free) continue;
+            const double v = p.value * std::exp(z[f++]);
+            if (!(v >= p.lo && v <= p.hi)) return false;
+        }
+        return true;
+    };
     for (std::size_t d = 0; d < n; ++d) {
-        for (double& x : g) x = normals.next();
-        for (std::size_t i = 0; i < m; ++i) {
-            z[i] = 0.0;
-            for (std::size_t k = 0; k <= i; ++k) z[i] += l[i][k] * g[k];
+        for (std::size_t attempt = 0;; ++attempt) {
+            if (attempt == kMaxDrawAttempts)
+                throw std::runtime_error("preset " + model.name + ": fewer than 1 in " +
+                                         std::to_string(kMaxDrawAttempts) +
+                                         " draws of its covariance fall inside the parameters' bounds");
+            for (double& x : g) x = normals.next();
+            for (std::size_t i = 0; i < m; ++i) {
+                z[i] = 0.0;
+                for (std::size_t k = 0; k <= i; ++k) z[i] += l[i][k] * g[k];
+            }
+            if (inside()) break;
         }
         CostModel c = model;
         c.uncertainty.reset();  // a draw is a plain model: nothing copies the block per draw
         std::size_t f = 0;
         for (const UncertainParameter& p : u.parameters) {
             if (!p.free) continue;
-            const double v = std::clamp(p.value * std::exp(z[f++]), p.lo, p.hi);
+            const double v = p.value * std::exp(z[f++]);
             // Both ties: the events' costs move by the factor the value moves.
             for (Event e : p.events) c[e] = model[e] * (v / p.value);
         }

@@ -64,8 +64,15 @@ struct CostUncertainty {
 // `n` copies of `model` with the free parameters drawn from N(log value, cov)
 // (multivariate normal through the Cholesky factor; normals from splitmix64
 // and Box-Muller, so the same seed gives the same draws on every platform's
-// standard library), clamped into [lo, hi]. Empty when the model has no
-// uncertainty block. Draw d is the same whichever method it prices.
+// standard library), truncated to the bounds by rejection: a draw with any
+// parameter outside its [lo, hi] is drawn again, so every draw lies on the
+// fit's own ridge (clamping one parameter would pair it with the others'
+// values the fit never paired it with). Parameters fitted at a bound are not
+// free and stay at their value in every draw. Throws std::runtime_error when
+// fewer than 1 in kMaxDrawAttempts draws fall inside the bounds. Empty when
+// the model has no uncertainty block. Draw d is the same whichever method it
+// prices.
+inline constexpr std::size_t kMaxDrawAttempts = 10000;
 [[nodiscard]] std::vector<CostModel> draw_cost_models(const CostModel& model, std::size_t n, std::uint64_t seed);
 
 // [5th, 95th] percentile of `samples` (linear interpolation between order
