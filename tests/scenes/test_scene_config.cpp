@@ -84,6 +84,31 @@ TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper
     }
 }
 
+TEST_CASE("scene config: curve_basis, its defaults and its errors") {
+    CHECK(load({{"type", "hair"}, {"strands", 3}}).strands.basis == CurveBasis::BSpline);
+    const Scene bez = load({{"type", "hair"}, {"strands", 3}, {"points_per_strand", 7}, {"curve_basis", "bezier"}});
+    CHECK(bez.strands.basis == CurveBasis::Bezier);
+    CHECK(compute_stats(bez).curves == 3 * 2);
+    CHECK(load({{"type", "bundle"}, {"count", 2}, {"curve_basis", "bezier"}}).strands.basis == CurveBasis::Bezier);
+    // Files: polyline formats default to bspline, pbrt curves to bezier; the key overrides both.
+    const std::string fixtures = std::string(RTCSIM_SOURCE_DIR) + "/tests/fixtures/";
+    const json txt = {{"path", fixtures + "txt/two_strands.txt"}};
+    const json pbrt = {{"path", fixtures + "pbrt/scene.pbrt"}};
+    CHECK(load({{"type", "file"}, {"curves", txt}}).strands.basis == CurveBasis::BSpline);
+    CHECK(load({{"type", "file"}, {"curves", txt}, {"curve_basis", "bezier"}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", pbrt}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", pbrt}, {"curve_basis", "bspline"}}).strands.basis == CurveBasis::BSpline);
+    CHECK(load({{"type", "file"}, {"curves", json::array({pbrt, pbrt})}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", json::array({pbrt, txt})}}).strands.basis == CurveBasis::BSpline);
+    for (const json& type : {json("bundle"), json("hair")}) {
+        const std::string e = error_of({{"type", type}, {"curve_basis", "catmull-rom"}});
+        CAPTURE(e);
+        CHECK(e.rfind(kConfig + ": /scene/curve_basis: ", 0) == 0);
+        CHECK(e.find("bezier") != std::string::npos);
+    }
+    CHECK(error_of({{"type", "file"}, {"curves", txt}, {"curve_basis", 3}}).find("/scene/curve_basis") != std::string::npos);
+}
+
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
     if (!test::shared_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj",
                                kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair"}))
