@@ -67,20 +67,22 @@ TEST_CASE("scene config: procedural hair") {
     CHECK(tip.z - root.z == doctest::Approx(1.0f).epsilon(1e-5));
 }
 
-TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's segment counts") {
+TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's curve counts") {
     const std::string file = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/curly_table1.json";
     const json config = parse_json_text(read_text_file(file), file);
     const json& scenes = config.at("sweep").at("scene");
     REQUIRE(scenes.size() == 2);
-    const std::size_t segments[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M
+    const std::size_t curves[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M cubics
     for (std::size_t i = 0; i < 2; ++i) {
         const Scene s = load_scene(JsonReader(scenes[i], file, "/sweep/scene/" + std::to_string(i)));
         CAPTURE(s.name);
-        CHECK(s.strands.segment_count() == segments[i]);
+        CHECK(s.strands.basis == CurveBasis::Bezier);
+        CHECK(s.strands.segment_count() == 3 * curves[i]);  // capsules and links: three per cubic
         CHECK(s.mesh.triangles.empty());
         const SceneStats st = compute_stats(s);
+        CHECK(st.curves == curves[i]);
         CHECK(st.mean_radius == doctest::Approx(3e-5).epsilon(1e-3));
-        CHECK(st.mean_length_over_radius > 150.0);
+        CHECK(st.mean_length_over_radius > 50.0);
     }
 }
 
