@@ -3,6 +3,7 @@
 
 #include "core/input_error.h"
 
+#include <algorithm>
 #include <string>
 
 namespace rtc {
@@ -122,7 +123,49 @@ std::vector<PhantomCurve> phantom_curves(const Strands& s, int subdivision) {
     return out;
 }
 
+// The Bezier basis: strand points 3i..3i+3 are curve i's control points
+// (radii likewise); a trailing one or two links are a line or a quadratic
+// Bezier, degree-elevated to the cubic that traces exactly that.
+PhantomCurve bezier_piece(const Vec3* p, const float* r, std::uint32_t links) {
+    PhantomCurve c;
+    if (links == 3) {
+        c.cp = {p[0], p[1], p[2], p[3]};
+        c.radius = {r[0], r[1], r[2], r[3]};
+    } else if (links == 2) {
+        c.cp = {p[0], (p[0] + 2.0f * p[1]) / 3.0f, (2.0f * p[1] + p[2]) / 3.0f, p[2]};
+        c.radius = {r[0], (r[0] + 2.0f * r[1]) / 3.0f, (2.0f * r[1] + r[2]) / 3.0f, r[2]};
+    } else {
+        c.cp = {p[0], (2.0f * p[0] + p[1]) / 3.0f, (p[0] + 2.0f * p[1]) / 3.0f, p[1]};
+        c.radius = {r[0], (2.0f * r[0] + r[1]) / 3.0f, (r[0] + 2.0f * r[1]) / 3.0f, r[1]};
+    }
+    return c;
+}
+
+std::vector<PhantomCurve> bezier_curves(const Strands& s, int subdivision) {
+    std::vector<PhantomCurve> out;
+    out.reserve(primitive_count(s, PrimitiveKind::Phantom, subdivision));
+    for_each_strand(s, [&](std::uint32_t, std::uint32_t first, std::uint32_t n) {
+        for (std::uint32_t j = 0; j + 1 < n; j += 3)
+            append_subdivided(out, bezier_piece(&s.points[first + j], &s.radii[first + j], std::min(3u, n - 1 - j)),
+                              subdivision);
+    });
+    return out;
+}
+
 }  // namespace
+
+std::size_t curve_count(std::size_t points, CurveBasis basis) {
+    if (points < 2) return 0;
+    return basis == CurveBasis::Bezier ? (points - 1 + 2) / 3 : points - 1;
+}
+
+std::size_t primitive_count(const Strands& s, PrimitiveKind kind, int subdivision) {
+    if (kind != PrimitiveKind::Phantom) return s.segment_count();
+    if (s.basis == CurveBasis::BSpline) return s.segment_count() * static_cast<std::size_t>(subdivision);
+    std::size_t n = 0;
+    for_each_strand(s, [&](std::uint32_t, std::uint32_t, std::uint32_t points) { n += curve_count(points, s.basis); });
+    return n * static_cast<std::size_t>(subdivision);
+}
 
 PrimitiveArray to_primitives(const Strands& s, PrimitiveKind kind, int subdivision) {
     check_subdivision(kind, subdivision);
@@ -140,7 +183,8 @@ PrimitiveArray to_primitives(const Strands& s, PrimitiveKind kind, int subdivisi
         case PrimitiveKind::Link:
             return per_segment<Link>(
                 s, [&](std::uint32_t a, std::uint32_t b) { return Link{P[a], R[a], P[b], R[b]}; });
-        case PrimitiveKind::Phantom: return phantom_curves(s, subdivision);
+        case PrimitiveKind::Phantom:
+            return s.basis == CurveBasis::Bezier ? bezier_curves(s, subdivision) : phantom_curves(s, subdivision);
     }
     throw InputError("unknown primitive kind");
 }
@@ -148,9 +192,10 @@ PrimitiveArray to_primitives(const Strands& s, PrimitiveKind kind, int subdivisi
 std::vector<std::uint32_t> primitive_strands(const Strands& s, PrimitiveKind kind, int subdivision) {
     check_subdivision(kind, subdivision);
     std::vector<std::uint32_t> out;
-    out.reserve(s.segment_count() * static_cast<std::size_t>(subdivision));
+    out.reserve(primitive_count(s, kind, subdivision));
+    const CurveBasis basis = kind == PrimitiveKind::Phantom ? s.basis : CurveBasis::BSpline;  // one per link
     for_each_strand(s, [&](std::uint32_t strand, std::uint32_t, std::uint32_t n) {
-        if (n >= 2) out.insert(out.end(), std::size_t{n - 1} * subdivision, strand);
+        out.insert(out.end(), curve_count(n, basis) * static_cast<std::size_t>(subdivision), strand);
     });
     return out;
 }

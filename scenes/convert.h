@@ -3,14 +3,22 @@
 // - Cylinder, Capsule: one per segment, constant radius = the mean of the two
 //   point radii (these primitives have a single radius).
 // - Link: one per segment with the two point radii.
-// - Phantom: the strand's points are the control points of a uniform cubic
+// - Phantom, by the strands' basis (scenes/scene.h: CurveBasis):
+//   BSpline: the strand's points are the control points of a uniform cubic
 //   B-spline; each window of four consecutive points is one curve segment,
 //   converted to Bezier form (radius likewise, as a 1-D spline). Phantom end
 //   points p[-1] = 2 p0 - p1 and p[n] = 2 p[n-1] - p[n-2] are added so that
 //   the n - 1 curves of an n-point strand run exactly from p0 to p[n-1] (the
-//   curve approximates, does not interpolate, the interior points). Each
-//   curve may then be split into 2, 4 or 8 sub-curves (de Casteljau at
-//   t = 1/2, recursively), as in the paper's pre-subdivision.
+//   curve approximates, does not interpolate, the interior points).
+//   Bezier: the points are a cubic Bezier control polygon; curve i has
+//   points 3i..3i+3 as its control points (radii likewise), so an n-point
+//   strand gives ceil((n - 1) / 3) curves, each spanning three of the links
+//   the straight kinds make. When n - 1 is not a multiple of 3, the trailing
+//   one or two links are a line or a quadratic Bezier, degree-elevated to
+//   the cubic that traces exactly it (a two-point strand is its segment).
+//   Either way, each curve may then be split into 2, 4 or 8 sub-curves
+//   (de Casteljau at t = 1/2, recursively), as in the paper's
+//   pre-subdivision.
 // Order: strand by strand, segment by segment, sub-curves in parameter order.
 #pragma once
 
@@ -40,6 +48,11 @@ using PrimitiveArray = std::variant<std::vector<Cylinder>, std::vector<Capsule>,
 [[nodiscard]] std::vector<std::uint32_t> primitive_strands(const Strands& strands, PrimitiveKind kind,
                                                            int subdivision = 1);
 [[nodiscard]] std::size_t primitive_count(const PrimitiveArray& prims);
+// How many primitives to_primitives would make, without making them.
+[[nodiscard]] std::size_t primitive_count(const Strands& strands, PrimitiveKind kind, int subdivision = 1);
+// The phantom curves (before pre-subdivision) of one strand of `points`
+// points: points - 1 (BSpline) or ceil((points - 1) / 3) (Bezier); 0 below 2.
+[[nodiscard]] std::size_t curve_count(std::size_t points, CurveBasis basis);
 
 // The curve arithmetic, exposed for tests and for other tools.
 namespace bspline {

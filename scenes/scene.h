@@ -3,19 +3,41 @@
 // (scenes/convert.h) turns strands into primitives of one kind.
 #pragma once
 
+#include "core/enum_names.h"
 #include "core/ray.h"
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rtc {
+
+// How a strand's points define its phantom curves (scenes/convert.h); the
+// straight kinds (cylinder, capsule, link) connect consecutive points in
+// both, one primitive per link.
+//   BSpline: the points are a uniform cubic B-spline's control points, one
+//            curve per link (this project's first conversion, the default).
+//   Bezier:  the points are a cubic Bezier control polygon, one curve per
+//            three links (points 3i..3i+3, consecutive curves sharing an end
+//            point), as Wald et al. 2020 built theirs.
+enum class CurveBasis : std::uint8_t { BSpline, Bezier };
+inline constexpr std::array<std::string_view, 2> kCurveBasisNames = {"bspline", "bezier"};
+
+[[nodiscard]] constexpr std::string_view curve_basis_name(CurveBasis b) {
+    return kCurveBasisNames[static_cast<std::size_t>(b)];
+}
+[[nodiscard]] constexpr std::optional<CurveBasis> curve_basis_from_name(std::string_view s) {
+    return enum_from_name<CurveBasis>(kCurveBasisNames, s);
+}
 
 struct Strands {
     std::vector<Vec3> points;
     std::vector<float> radii;              // one per point
     std::vector<std::uint32_t> offsets{0}; // strand i is points[offsets[i], offsets[i+1])
+    CurveBasis basis = CurveBasis::BSpline;
 
     [[nodiscard]] std::size_t strand_count() const { return offsets.size() - 1; }
     [[nodiscard]] std::size_t segment_count() const {

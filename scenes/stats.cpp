@@ -1,6 +1,8 @@
 // Scene statistics (see stats.h). Sums in double: millions of small terms.
 #include "scenes/stats.h"
 
+#include "scenes/convert.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,8 @@ SceneStats compute_stats(const Scene& scene) {
     st.segments = s.segment_count();
     st.points = s.points.size();
     st.triangles = scene.mesh.triangles.size();
+    st.curve_basis = s.basis;
+    for (std::size_t i = 0; i < s.strand_count(); ++i) st.curves += curve_count(s.offsets[i + 1] - s.offsets[i], s.basis);
     for (std::size_t k = 0; k < s.points.size(); ++k) {
         st.bounds.extend(s.points[k] - Vec3(s.radii[k]));
         st.bounds.extend(s.points[k] + Vec3(s.radii[k]));

@@ -17,6 +17,8 @@ struct SceneStats {
     std::size_t segments = 0;
     std::size_t points = 0;
     std::size_t triangles = 0;
+    CurveBasis curve_basis = CurveBasis::BSpline;  // how the points make phantom curves (scene.h)
+    std::size_t curves = 0;               // phantom curves before pre-subdivision (BSpline: = segments)
     Aabb bounds;                          // points grown by their radii, plus mesh vertices
     double mean_segment_length = 0.0;
     double mean_radius = 0.0;             // per segment: mean of its two point radii

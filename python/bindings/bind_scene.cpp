@@ -89,6 +89,8 @@ py::dict stats(const SceneHandle& h) {
     d["segments"] = s.segments;
     d["points"] = s.points;
     d["triangles"] = s.triangles;
+    d["curve_basis"] = std::string(curve_basis_name(s.curve_basis));
+    d["curves"] = s.curves;
     if (!s.bounds.empty())
         d["bounds"] = py::make_tuple(py::make_tuple(s.bounds.lo.x, s.bounds.lo.y, s.bounds.lo.z),
                                      py::make_tuple(s.bounds.hi.x, s.bounds.hi.y, s.bounds.hi.z));

@@ -19,6 +19,7 @@ Vec3 perpendicular(const Vec3& d) {
 Strands add_follow_hairs(const Strands& guides, const FollowHairDesc& d) {
     if (d.per_guide == 0) return guides;
     Strands out;
+    out.basis = guides.basis;  // offsets grow linearly along the strand: a control polygon stays one
     const std::size_t copies = 1 + std::size_t{d.per_guide};
     out.points.reserve(guides.points.size() * copies);
     out.radii.reserve(guides.radii.size() * copies);

@@ -67,8 +67,8 @@ void grow(const HairDesc& d, SceneRng& rng, const Vec3& root, const Vec3& normal
     const float phase = shared ? shared->phase : kTwoPi * static_cast<float>(rng.uniform());
     const float tip = d.tip_radius < 0.0f ? d.radius : d.tip_radius;
     const std::uint32_t n = d.points_per_strand;
-    for (std::uint32_t k = 0; k < n; ++k) {
-        const float u = static_cast<float>(k) / static_cast<float>(n - 1);
+    // The centreline at u in [0, 1] (root to tip) and its derivative d/du.
+    auto centre = [&](float u) {
         Vec3 p = root + (d.length * u) * axis;
         if (d.style == HairStyle::Wavy) {
             // Minus the value at u = 0, so the strand starts at its root.
@@ -79,7 +79,32 @@ void grow(const HairDesc& d, SceneRng& rng, const Vec3& root, const Vec3& normal
             p += (d.curl_radius * d.length) *
                  ((std::cos(a) - std::cos(phase)) * t1 + (std::sin(a) - std::sin(phase)) * t2);
         }
-        s.points.push_back(p);
+        return p;
+    };
+    auto tangent = [&](float u) {
+        Vec3 v = d.length * axis;
+        if (d.style == HairStyle::Wavy) {
+            const float w = kTwoPi * d.waves;
+            v += (d.wave_amplitude * d.length * w * std::cos(w * u + phase)) * t1;
+        } else if (d.style == HairStyle::Curly) {
+            const float w = kTwoPi * d.curl_turns, a = w * u + phase;
+            v += (d.curl_radius * d.length * w) * (-std::sin(a) * t1 + std::cos(a) * t2);
+        }
+        return v;
+    };
+    auto at = [&](std::uint32_t k) { return static_cast<float>(k) / static_cast<float>(n - 1); };
+    for (std::uint32_t k = 0; k < n; ++k) {
+        const float u = at(k);
+        const std::uint32_t first = k - k % 3;  // Bezier: the end point that opens k's curve
+        if (d.basis == CurveBasis::Bezier && k % 3 != 0 && first + 3 <= n - 1) {
+            // Hermite to Bezier over the curve's span h: the inner control
+            // points leave each end along its tangent by h / 3.
+            const float h = at(first + 3) - at(first);
+            s.points.push_back(k % 3 == 1 ? centre(at(first)) + (h / 3.0f) * tangent(at(first))
+                                          : centre(at(first + 3)) - (h / 3.0f) * tangent(at(first + 3)));
+        } else {
+            s.points.push_back(centre(u));
+        }
         s.radii.push_back(d.radius + (tip - d.radius) * u);
     }
     s.offsets.push_back(static_cast<std::uint32_t>(s.points.size()));
@@ -102,6 +127,7 @@ Scene make_hair(const HairDesc& d) {
     check(d);
     Scene scene;
     reserve(d, scene.strands);
+    scene.strands.basis = d.basis;
     SceneRng rng(d.seed);
     if (d.emitter == HairEmitter::Lock) {
         scene.name = std::string("procedural ") + style_name(d.style) + " hair lock";
@@ -150,6 +176,7 @@ Scene make_hair_on_mesh(const HairDesc& d, const TriangleMesh& emitter) {
     Scene scene;
     scene.name = std::string("procedural ") + style_name(d.style) + " hair on a mesh";
     reserve(d, scene.strands);
+    scene.strands.basis = d.basis;
     SceneRng rng(d.seed);
     for (std::uint32_t i = 0; i < d.strands; ++i) {
         const double pick = rng.uniform() * total;

@@ -8,6 +8,12 @@
 //   curly:    plus a helix around the growth direction (tight curls when the
 //             helix radius is small and the turns many; give each turn
 //             enough points, ~8 or more, or the polyline aliases the helix).
+// With `basis` Bezier the points are a cubic Bezier control polygon of the
+// same centreline (scene.h: CurveBasis): points 0, 3, 6, ... lie on it and
+// the two between are placed from its tangents (Hermite to Bezier,
+// c1 = p0 + T0 h/3, c2 = p3 - T3 h/3 over the curve's parameter span h), so
+// consecutive curves join with a continuous tangent; points past the last
+// full curve (points - 1 not a multiple of 3) lie on the centreline.
 // Fast enough for millions of segments (no allocation per strand), and a pure
 // function of the description (seeded SplitMix64).
 #pragma once
@@ -41,6 +47,7 @@ struct HairDesc {
     float curl_turns = 4.0f;            // curly: helix turns along the strand
     std::uint64_t seed = 1;
     bool with_mesh = false;             // add the emitter (sphere mesh, or the mesh) as triangles
+    CurveBasis basis = CurveBasis::BSpline;  // what the points are (see above)
 };
 
 // Sphere or lock emitter; throws std::invalid_argument on a description out

@@ -75,7 +75,10 @@ struct PbrtScene {
     std::array<double, 2> film_resolution{0.0, 0.0};  // Film's x/yresolution (0: no Film)
     std::vector<std::string> notes;                   // "<file>: ..." per thing dropped, as above
 };
-[[nodiscard]] PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits = {});
+// `basis`: what a curve's strand points are (pbrt/shapes.h): its cubic Bezier
+// control points (Bezier, the default) or samples on the curve (BSpline).
+[[nodiscard]] PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits = {},
+                                  CurveBasis basis = CurveBasis::Bezier);
 
 // glTF 2.0 (.gltf with embedded or external buffers, .glb) and PLY (ASCII or
 // binary) meshes through assimp: every triangle of every mesh node, node
@@ -95,9 +98,17 @@ enum class MeshFormat : std::uint8_t { Auto, Obj, Gltf, Ply, Pbrt };
 
 enum class CurveFormat : std::uint8_t { Auto, Hair, Tfx, Trk, Swc, Obj, Txt, Pbrt };
 [[nodiscard]] std::optional<CurveFormat> curve_format_from_name(std::string_view name);
-// Auto picks by extension (.hair .tfx .trk .swc .obj .txt .pbrt); an unknown
-// extension is an InputError.
+// `format`, or for Auto the format the extension names (.hair .tfx .trk .swc
+// .obj .txt .pbrt); an unknown extension is an InputError.
+[[nodiscard]] CurveFormat resolve_curve_format(const std::filesystem::path& file, CurveFormat format);
+// The basis a format's curves have unless a config says otherwise: Bezier for
+// pbrt (its curves are Bezier curves), BSpline for the polyline formats.
+[[nodiscard]] CurveBasis default_curve_basis(CurveFormat resolved);
+// Reads the file's strands with `basis` (default: the format's); for the
+// polyline formats the basis only says how their points are read, for pbrt
+// it also picks the points (load_pbrt).
 [[nodiscard]] LoadedCurves load_curves(const std::filesystem::path& file,
-                                       CurveFormat format = CurveFormat::Auto);
+                                       CurveFormat format = CurveFormat::Auto,
+                                       std::optional<CurveBasis> basis = std::nullopt);
 
 }  // namespace rtc

@@ -42,7 +42,7 @@ DataPath data_path(const JsonReader& block, std::string_view key) {
 }
 
 void parse_bundle(const JsonReader& j, SceneDesc& s) {
-    j.allow_only({"type", "name", "count", "radius", "tilt_deg", "seed", "bundle_radius", "length"});
+    j.allow_only({"type", "name", "count", "radius", "tilt_deg", "seed", "bundle_radius", "length", "curve_basis"});
     BundleDesc& d = s.bundle;
     d.count = static_cast<std::uint32_t>(j.integer("count", d.count, 1, kMaxCount));
     d.bundle_radius = j.length("bundle_radius", d.bundle_radius);
@@ -58,7 +58,7 @@ void parse_hair(const JsonReader& j, SceneDesc& s) {
     j.allow_only({"type", "name", "emitter", "sphere_radius", "sphere_center", "mesh", "lock_center",
                   "lock_radius", "lock_axis", "style", "strands", "points_per_strand", "length", "radius",
                   "tip_radius", "lean", "wave_amplitude", "waves", "curl_radius", "curl_turns", "seed",
-                  "with_mesh"});
+                  "with_mesh", "curve_basis"});
     HairDesc& d = s.hair;
     const std::string emitter = j.choice("emitter", "sphere", {"sphere", "mesh", "lock"});
     d.emitter = emitter == "sphere" ? HairEmitter::Sphere : emitter == "mesh" ? HairEmitter::Mesh : HairEmitter::Lock;
@@ -120,7 +120,7 @@ CurveFileDesc parse_curves(const JsonReader& c) {
 }
 
 void parse_file(const JsonReader& j, SceneDesc& s) {
-    j.allow_only({"type", "name", "curves", "mesh"});
+    j.allow_only({"type", "name", "curves", "mesh", "curve_basis"});
     if (!j.has("curves") && !j.has("mesh")) j.fail("", "a file scene needs \"curves\", \"mesh\" or both");
     if (j.has("curves") && j.json()["curves"].is_array()) {
         // Several curve files (e.g. one SWC per neuron) form one scene.
@@ -146,7 +146,7 @@ void parse_file(const JsonReader& j, SceneDesc& s) {
 }
 
 Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c, std::vector<std::string>& notes) {
-    LoadedCurves loaded = load_curves(c.path.path, c.format);
+    LoadedCurves loaded = load_curves(c.path.path, c.format, s.curve_basis);
     notes.insert(notes.end(), loaded.notes.begin(), loaded.notes.end());
     if (loaded.strands.strand_count() == 0) fail_at(s, c.path.key, "no strands in " + c.path.shown);
     if (c.radius) {
@@ -163,10 +163,20 @@ Strands load_curve_file(const SceneDesc& s, const CurveFileDesc& c, std::vector<
     return std::move(loaded.strands);
 }
 
+// A pbrt curve file (by name or extension; a bad extension fails when loaded).
+bool is_pbrt(const CurveFileDesc& c) {
+    try {
+        return resolve_curve_format(c.path.path, c.format) == CurveFormat::Pbrt;
+    } catch (const InputError&) {
+        return false;
+    }
+}
+
 void append_strands(Strands& into, const Strands& more) {
     const auto base = static_cast<std::uint32_t>(into.points.size());
     into.points.insert(into.points.end(), more.points.begin(), more.points.end());
     into.radii.insert(into.radii.end(), more.radii.begin(), more.radii.end());
+    into.basis = more.basis;  // every file of a scene is read with the scene's basis
     for (std::size_t i = 1; i < more.offsets.size(); ++i) into.offsets.push_back(base + more.offsets[i]);
 }
 
@@ -211,6 +221,12 @@ SceneDesc parse_scene(const JsonReader& j) {
         parse_file(j, s);
     }
     if (j.has("name")) s.name = j.string("name", std::nullopt);
+    if (j.has("curve_basis")) {
+        s.curve_basis = *curve_basis_from_name(j.choice("curve_basis", std::nullopt, {"bspline", "bezier"}));
+    } else if (!s.curves.empty() && std::all_of(s.curves.begin(), s.curves.end(), is_pbrt)) {
+        s.curve_basis = CurveBasis::Bezier;
+    }
+    s.hair.basis = s.curve_basis;
     return s;
 }
 
@@ -229,6 +245,7 @@ Scene load_scene(const SceneDesc& d) {
             break;
         case SceneType::File: s = file_scene(d); break;
     }
+    s.strands.basis = d.curve_basis;
     if (d.name) s.name = *d.name;
     return s;
 }

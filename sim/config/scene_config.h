@@ -60,6 +60,9 @@ struct SceneDesc {
     std::vector<CurveFileDesc> curves; // type file
     bool curve_list = false;           // "curves" is a list (the scene is named by its key)
     std::optional<MeshFileDesc> mesh;  // type file
+    // "curve_basis" (every type), or its default: Bezier when every curve
+    // file is pbrt (their curves are Bezier curves), else BSpline.
+    CurveBasis curve_basis = CurveBasis::BSpline;
 };
 
 // Checks every key of the block `r` points at; touches no data file but to

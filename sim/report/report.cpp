@@ -15,6 +15,8 @@ nlohmann::ordered_json scene_stats_json(const SceneStats& s) {
     j["segments"] = s.segments;
     j["points"] = s.points;
     j["triangles"] = s.triangles;
+    j["curve_basis"] = std::string(curve_basis_name(s.curve_basis));
+    j["curves"] = s.curves;
     if (!s.bounds.empty())
         j["bounds"] = {{s.bounds.lo.x, s.bounds.lo.y, s.bounds.lo.z}, {s.bounds.hi.x, s.bounds.hi.y, s.bounds.hi.z}};
     j["mean_segment_length"] = s.mean_segment_length;

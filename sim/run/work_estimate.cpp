@@ -4,6 +4,7 @@
 #include "core/input_error.h"
 #include "core/sinks.h"
 #include "sim/config/run_config.h"
+#include "scenes/convert.h"
 #include "sim/methods/method.h"
 
 #include <unistd.h>
@@ -44,14 +45,18 @@ std::string count_text(double x) {
 
 namespace {
 
-double procedural_primitives(const SceneDesc& scene, std::string& key) {
+double procedural_primitives(const SceneDesc& scene, PrimitiveKind kind, std::string& key) {
     if (scene.type == SceneType::Bundle) {
         key = "/scene/count";
         return scene.bundle.count;
     }
     if (scene.type == SceneType::Hair) {
         key = "/scene/strands";
-        return static_cast<double>(scene.hair.strands) * std::max(1.0, scene.hair.points_per_strand - 1.0);
+        // One per link, or per phantom curve (scenes/convert.h: curve_count).
+        const double per_strand = kind == PrimitiveKind::Phantom
+                                      ? static_cast<double>(curve_count(scene.hair.points_per_strand, scene.curve_basis))
+                                      : scene.hair.points_per_strand - 1.0;
+        return static_cast<double>(scene.hair.strands) * std::max(1.0, per_strand);
     }
     return 0.0;
 }
@@ -157,7 +162,7 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
     const double pixel_bytes = pixels * kBytesPerPixel * methods;
     const double recorded = (c.output.write_rays || c.output.write_hits) ? e.rays * kBytesPerRecordedRay : 0.0;
     std::string prim_key;
-    e.primitives = procedural_primitives(c.scene, prim_key) *
+    e.primitives = procedural_primitives(c.scene, c.kind, prim_key) *
                    (c.kind == PrimitiveKind::Phantom ? c.subdivision : 1);
     const double prim_bytes = e.primitives * kBytesPerPrimitive;
     e.memory_bytes += pixel_bytes + recorded + prim_bytes;
@@ -180,8 +185,7 @@ WorkEstimate estimate_scene_work(const RunConfig& c, const Scene& scene) {
     WorkEstimate e = estimate_config_work(c);
     const double strands = c.scene.type == SceneType::Hair ? static_cast<double>(c.scene.hair.strands) : 0.0;
     const double before = e.primitives * kBytesPerPrimitive + method_bytes(c, e.primitives, strands).first;
-    e.primitives = static_cast<double>(scene.strands.segment_count()) *
-                       (c.kind == PrimitiveKind::Phantom ? c.subdivision : 1) +
+    e.primitives = static_cast<double>(primitive_count(scene.strands, c.kind, c.subdivision)) +
                    static_cast<double>(scene.mesh.triangles.size());
     const double prim_bytes = e.primitives * kBytesPerPrimitive;
     e.memory_bytes += prim_bytes - before;

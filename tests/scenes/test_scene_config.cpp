@@ -67,21 +67,48 @@ TEST_CASE("scene config: procedural hair") {
     CHECK(tip.z - root.z == doctest::Approx(1.0f).epsilon(1e-5));
 }
 
-TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's segment counts") {
+TEST_CASE("scene config: the curly stand-ins of curly_table1.json have the paper's curve counts") {
     const std::string file = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/curly_table1.json";
     const json config = parse_json_text(read_text_file(file), file);
     const json& scenes = config.at("sweep").at("scene");
     REQUIRE(scenes.size() == 2);
-    const std::size_t segments[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M
+    const std::size_t curves[] = {600000, 3300000};  // Wald et al. 2020: ~600 K, ~3.3 M cubics
     for (std::size_t i = 0; i < 2; ++i) {
         const Scene s = load_scene(JsonReader(scenes[i], file, "/sweep/scene/" + std::to_string(i)));
         CAPTURE(s.name);
-        CHECK(s.strands.segment_count() == segments[i]);
+        CHECK(s.strands.basis == CurveBasis::Bezier);
+        CHECK(s.strands.segment_count() == 3 * curves[i]);  // capsules and links: three per cubic
         CHECK(s.mesh.triangles.empty());
         const SceneStats st = compute_stats(s);
+        CHECK(st.curves == curves[i]);
         CHECK(st.mean_radius == doctest::Approx(3e-5).epsilon(1e-3));
-        CHECK(st.mean_length_over_radius > 150.0);
+        CHECK(st.mean_length_over_radius > 50.0);
     }
+}
+
+TEST_CASE("scene config: curve_basis, its defaults and its errors") {
+    CHECK(load({{"type", "hair"}, {"strands", 3}}).strands.basis == CurveBasis::BSpline);
+    const Scene bez = load({{"type", "hair"}, {"strands", 3}, {"points_per_strand", 7}, {"curve_basis", "bezier"}});
+    CHECK(bez.strands.basis == CurveBasis::Bezier);
+    CHECK(compute_stats(bez).curves == 3 * 2);
+    CHECK(load({{"type", "bundle"}, {"count", 2}, {"curve_basis", "bezier"}}).strands.basis == CurveBasis::Bezier);
+    // Files: polyline formats default to bspline, pbrt curves to bezier; the key overrides both.
+    const std::string fixtures = std::string(RTCSIM_SOURCE_DIR) + "/tests/fixtures/";
+    const json txt = {{"path", fixtures + "txt/two_strands.txt"}};
+    const json pbrt = {{"path", fixtures + "pbrt/scene.pbrt"}};
+    CHECK(load({{"type", "file"}, {"curves", txt}}).strands.basis == CurveBasis::BSpline);
+    CHECK(load({{"type", "file"}, {"curves", txt}, {"curve_basis", "bezier"}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", pbrt}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", pbrt}, {"curve_basis", "bspline"}}).strands.basis == CurveBasis::BSpline);
+    CHECK(load({{"type", "file"}, {"curves", json::array({pbrt, pbrt})}}).strands.basis == CurveBasis::Bezier);
+    CHECK(load({{"type", "file"}, {"curves", json::array({pbrt, txt})}}).strands.basis == CurveBasis::BSpline);
+    for (const json& type : {json("bundle"), json("hair")}) {
+        const std::string e = error_of({{"type", type}, {"curve_basis", "catmull-rom"}});
+        CAPTURE(e);
+        CHECK(e.rfind(kConfig + ": /scene/curve_basis: ", 0) == 0);
+        CHECK(e.find("bezier") != std::string::npos);
+    }
+    CHECK(error_of({{"type", "file"}, {"curves", txt}, {"curve_basis", 3}}).find("/scene/curve_basis") != std::string::npos);
 }
 
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {

@@ -90,7 +90,8 @@ Shape "curve" "string basis" "bspline" "point3 P" [ 0 0 0  1 3 0  2 -1 1  4 0 2 
 Shape "curve" "string basis" "bspline" "integer degree" 2 "point3 P" [ 0 0 0  2 2 0  4 0 0 ]
 Shape "curve" "string type" "ribbon" "point3 P" [ 0 0 0  1 0 0  2 0 0  3 0 0 ] "normal N" [ 0 0 1  0 0 1 ]
 )");
-    const PbrtScene s = load_pbrt(path);
+    const PbrtScene s = load_pbrt(path, {}, CurveBasis::BSpline);  // samples on the curve
+    CHECK(s.curves.basis == CurveBasis::BSpline);
     REQUIRE(s.curves.strand_count() == 4);
     CHECK(s.curves.offsets[1] == 3);
     CHECK(near(s.curves.points[1], Vec3(1, 1, 0)));
@@ -104,11 +105,49 @@ Shape "curve" "string type" "ribbon" "point3 P" [ 0 0 0  1 0 0  2 0 0  3 0 0 ] "
 
     // A curved cubic Bezier: its samples at t = 0, 1/3, 2/3, 1 are bspline::bezier_point's.
     const auto bent = scratch_file("bezier.pbrt", "Shape \"curve\" \"point3 P\" [ 0 0 0  1 3 0  3 -2 1  4 1 2 ]\n");
-    const PbrtScene b = load_pbrt(bent);
+    const PbrtScene b = load_pbrt(bent, {}, CurveBasis::BSpline);
     PhantomCurve c;
     c.cp = {Vec3(0, 0, 0), Vec3(1, 3, 0), Vec3(3, -2, 1), Vec3(4, 1, 2)};
     REQUIRE(b.curves.points.size() == 4);
     for (int k = 0; k < 4; ++k) CHECK(near(b.curves.points[k], bspline::bezier_point(c, k / 3.0f), 1e-5f));
+    CHECK(load_curves(bent, CurveFormat::Auto, CurveBasis::BSpline).strands.points == b.curves.points);
+}
+
+TEST_CASE("pbrt import: by default a curve's strand is its cubic Bezier control points, phantom curves are pbrt's") {
+    const auto path = scratch_file("bezier_basis.pbrt", R"(
+Shape "curve" "integer degree" 2 "point3 P" [ 0 0 0  1 2 0  2 0 0 ] "string type" "cylinder"
+Shape "curve" "string basis" "bspline" "point3 P" [ 0 0 0  1 3 0  2 -1 1  4 0 2 ]
+Shape "curve" "string basis" "bspline" "integer degree" 2 "point3 P" [ 0 0 0  2 2 0  4 0 0 ]
+Shape "curve" "point3 P" [ 0 0 0  1 3 0  3 -2 1  4 1 2  5 4 2  6 0 0  7 0 1 ] "float width0" 2 "float width1" 0
+)");
+    const PbrtScene s = load_pbrt(path);
+    CHECK(s.curves.basis == CurveBasis::Bezier);
+    REQUIRE(s.curves.strand_count() == 4);
+    CHECK(s.curves.offsets == std::vector<std::uint32_t>{0, 4, 8, 12, 19});
+    // The quadratic, degree-elevated: (0,0,0) (2/3,4/3,0) (4/3,4/3,0) (2,0,0).
+    CHECK(near(s.curves.points[1], Vec3(2.0f / 3, 4.0f / 3, 0)));
+    CHECK(near(s.curves.points[2], Vec3(4.0f / 3, 4.0f / 3, 0)));
+    // The cubic B-spline segment in Bezier form.
+    const PhantomCurve bs = bspline::to_bezier({Vec3(0, 0, 0), Vec3(1, 3, 0), Vec3(2, -1, 1), Vec3(4, 0, 2)}, {});
+    for (int k = 0; k < 4; ++k) CHECK(near(s.curves.points[4 + k], bs.cp[k]));
+    // The quadratic B-spline: from (1,1,0) to (3,1,0) with (2,2,0) as its middle control point.
+    CHECK(near(s.curves.points[8], Vec3(1, 1, 0)));
+    CHECK(near(s.curves.points[9], Vec3(5.0f / 3, 5.0f / 3, 0)));
+    CHECK(near(s.curves.points[11], Vec3(3, 1, 0)));
+    // Two cubic Bezier segments: the file's seven control points as they are,
+    // width 2 -> 0 linear along the curve: radius 1 - k/6 at control point k.
+    for (int k = 0; k < 7; ++k) CHECK(s.curves.radii[12 + k] == doctest::Approx(1.0 - k / 6.0));
+    CHECK(s.curves.points[15] == Vec3(4, 1, 2));
+    // One phantom curve per cubic, exactly the file's; three capsules per cubic.
+    const auto curves = std::get<std::vector<PhantomCurve>>(to_primitives(s.curves, PrimitiveKind::Phantom));
+    REQUIRE(curves.size() == 5);
+    CHECK(curves[3].cp == std::array<Vec3, 4>{Vec3(0, 0, 0), Vec3(1, 3, 0), Vec3(3, -2, 1), Vec3(4, 1, 2)});
+    CHECK(curves[4].cp[0] == Vec3(4, 1, 2));
+    CHECK(primitive_count(to_primitives(s.curves, PrimitiveKind::Capsule)) == 15);
+    // Through the format dispatch, the pbrt default and the basis given.
+    CHECK(load_curves(path).strands.basis == CurveBasis::Bezier);
+    CHECK(load_curves(path).strands.points == s.curves.points);
+    CHECK(load_curves(path, CurveFormat::Pbrt, CurveBasis::BSpline).strands.basis == CurveBasis::BSpline);
 }
 
 TEST_CASE("pbrt import: Rotate, Transform, ConcatTransform, Identity, stacks and widths") {
@@ -202,8 +241,12 @@ TEST_CASE("pbrt import: the fuzz seed with the other directives loads as pbrt-v4
     CHECK(s.curve_shapes == 3);        // two instances of the object's curve, one ribbon
     CHECK(s.mesh.triangles.size() == 5);  // 2 x (one bilinear patch = 2 triangles) + the loopsubdiv control triangle
     CHECK(s.skipped_shapes.at("disk") == 1);
-    // Quadratic B-spline of 4 points: 2 segments, 2 samples each, + 1.
-    CHECK(s.curves.offsets[1] == 5);
+    // Quadratic B-spline of 4 points: 2 segments, each a cubic (3 control
+    // links, the default Bezier basis), + 1; sampled (B-spline basis): 2 each, + 1.
+    CHECK(s.curves.offsets[1] == 7);
+    const PbrtScene sampled = load_pbrt(std::filesystem::path(RTCSIM_SOURCE_DIR) / "tests/fuzz/corpus/pbrt/instances.pbrt",
+                                        {}, CurveBasis::BSpline);
+    CHECK(sampled.curves.offsets[1] == 5);
     // `Translate` while only the end-time transform is active does not move the last shape.
     CHECK(near(s.mesh.vertices[s.mesh.vertices.size() - 3], Vec3(0, 0, 0)));
     // The ribbon under the tilted frame scaled by 2: width 1 -> radius 1.

@@ -62,4 +62,14 @@ TEST_CASE("work estimate: the shipped 20 M fur sweep fits 16 GiB, and size 2 is 
                          InputError);
 }
 
+TEST_CASE("work estimate: phantom curves count by the curve basis") {
+    // 5 M strands of 5 points: 4 links each, so 4 B-spline curves or 2 Bezier
+    // cubics (one full, one degree-elevated link); capsules 4 either way.
+    const std::string phantom = "primitives={\"kind\": \"phantom\", \"subdivision\": 2}";
+    CHECK(fur({phantom}).primitives == doctest::Approx(5e6 * 4 * 2));
+    CHECK(fur({phantom, "scene.curve_basis=\"bezier\""}).primitives == doctest::Approx(5e6 * 2 * 2));
+    CHECK(fur({"primitives={\"kind\": \"capsule\"}", "scene.curve_basis=\"bezier\""}).primitives ==
+          doctest::Approx(5e6 * 4));
+}
+
 }  // namespace RTCSIM_TEST_FILE

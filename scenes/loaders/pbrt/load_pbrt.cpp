@@ -51,8 +51,8 @@ const std::set<std::string_view> kSkippedShapes = {"sphere", "disk", "cylinder"}
 
 class Loader {
 public:
-    Loader(const PbrtLimits& limits, const fs::path& main)
-        : limits_(limits), main_file_(main), main_dir_(main.parent_path()) {}
+    Loader(const PbrtLimits& limits, const fs::path& main, CurveBasis basis)
+        : limits_(limits), main_file_(main), main_dir_(main.parent_path()), basis_(basis) {}
 
     void parse_file(const fs::path& file, const Tokenizer* from, std::size_t from_line) {
         auto fail_from = [&](const std::string& problem) {
@@ -95,6 +95,7 @@ public:
     PbrtScene take() {
         PbrtScene out;
         out.curves = std::move(world_.curves);
+        out.curves.basis = basis_;
         out.mesh = std::move(world_.mesh);
         out.curve_shapes = world_.curve_shapes;
         out.mesh_shapes = world_.mesh_shapes;
@@ -208,7 +209,7 @@ private:
         const ParamList params = ParamList::read(t);
         Geometry g;
         if (type == "curve") {
-            pbrt::add_curve(params, g.curves);
+            pbrt::add_curve(params, g.curves, basis_);
             g.curve_shapes = 1;
         } else if (type == "trianglemesh" || type == "loopsubdiv") {
             pbrt::add_triangle_mesh(params, g.mesh);
@@ -343,6 +344,7 @@ private:
 
     const PbrtLimits& limits_;
     fs::path main_file_, main_dir_;
+    CurveBasis basis_;
     glm::dmat4 ctm_{1.0};
     bool transform_start_ = true;
     std::vector<Saved> stack_;
@@ -360,8 +362,8 @@ private:
 
 }  // namespace
 
-PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits) {
-    Loader loader(limits, file);
+PbrtScene load_pbrt(const std::filesystem::path& file, const PbrtLimits& limits, CurveBasis basis) {
+    Loader loader(limits, file, basis);
     loader.parse_file(file, nullptr, 0);
     return loader.take();
 }

@@ -91,7 +91,7 @@ void add_mesh(const ParamList& params, TriangleMesh& out, std::size_t corners) {
 void add_triangle_mesh(const ParamList& params, TriangleMesh& out) { add_mesh(params, out, 3); }
 void add_bilinear_mesh(const ParamList& params, TriangleMesh& out) { add_mesh(params, out, 4); }
 
-void add_curve(const ParamList& params, Strands& out) {
+void add_curve(const ParamList& params, Strands& out, CurveBasis out_basis) {
     const Param* P = params.find("P", "point3");
     if (!P) params.fail("missing parameter \"point3 P\"");
     check_finite(params, *P);
@@ -129,12 +129,18 @@ void add_curve(const ParamList& params, Strands& out) {
     const double split = params.number("splitdepth", "integer", 3);
     if (split < 0 || split > 30) params.fail(*params.find("splitdepth", "integer"), "must lie in [0, 30]");
 
+    // Bezier: the cubic control points themselves (consecutive segments share
+    // an end point, computed alike), radius = width / 2 at each control
+    // point's parameter (a linear radius has those control values).
+    // BSpline: `degree` samples on the curve per segment.
+    const bool control_points = out_basis == CurveBasis::Bezier;
+    const std::size_t steps = control_points ? 3 : d;
     for (std::size_t s = 0; s < segments; ++s) {
         const std::array<Vec3, 4> c = segment(P->numbers, bspline, degree, s);
-        for (std::size_t k = (s == 0 ? 0 : 1); k <= d; ++k) {
-            const float t = static_cast<float>(k) / static_cast<float>(d);
+        for (std::size_t k = (s == 0 ? 0 : 1); k <= steps; ++k) {
+            const float t = static_cast<float>(k) / static_cast<float>(steps);
             const double u = (static_cast<double>(s) + t) / static_cast<double>(segments);
-            out.points.push_back(k == 0 ? c[0] : k == d ? c[3] : bezier(c, t));
+            out.points.push_back(control_points ? c[k] : k == 0 ? c[0] : k == d ? c[3] : bezier(c, t));
             out.radii.push_back(static_cast<float>(0.5 * ((1.0 - u) * w0 + u * w1)));
         }
     }
