@@ -241,6 +241,26 @@ std::string cost_model_to_json(const CostModel& m) {
             for (Event x : m.execution.lockstep_events) names.push_back(std::string(event_name(x)));
             e["lockstep_events"] = {{"value", names}, {"source", source("lockstep_events")}};
         }
+        if (m.execution.sm.enabled) {
+            // The SM block as loaded, so a written preset (a fit's output)
+            // prices on the same SM as the preset it started from.
+            const SmModel& sm = m.execution.sm;
+            const auto sm_source = [&](const std::string& key) {
+                for (const auto& [k, v] : sm.sources)
+                    if (k == key) return v;
+                return std::string("default");
+            };
+            nlohmann::ordered_json b, regs;
+            for (const auto& [name, n] : sm.registers) regs[name] = n;
+            b["registers_per_sm"] = {{"value", sm.registers_per_sm}, {"source", sm_source("registers_per_sm")}};
+            b["max_warps"] = {{"value", sm.max_warps}, {"source", sm_source("max_warps")}};
+            b["allocation_unit"] = {{"value", sm.allocation_unit}, {"source", sm_source("allocation_unit")}};
+            b["partitions"] = {{"value", sm.partitions}, {"source", sm_source("partitions")}};
+            b["registers"] = {{"value", regs}, {"source", sm_source("registers")}};
+            b["latency_per_issue"] = {{"value", sm.latency_per_issue}, {"source", sm_source("latency_per_issue")}};
+            b["rt_unit_lanes"] = {{"value", sm.rt_unit_lanes}, {"source", sm_source("rt_unit_lanes")}};
+            e["sm"] = b;
+        }
         j["execution"] = e;
     }
     if (m.fitted_on.pixels() > 0)
