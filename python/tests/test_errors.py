@@ -163,3 +163,30 @@ def test_the_estimate_bounds_the_peak_of_small_clusters(simulate, tmp_path):
     assert measured <= memory, f"peak {measured / 2**20:.0f} MiB above the estimate {memory / 2**20:.0f} MiB"
     # Not a bound by a mile: within 4x (measured 13.5 KB per cluster at scale, 16 KiB estimated).
     assert memory < 4 * measured
+
+
+DEEP_SETS = {"key": "description" + ".a" * 60000 + "=1",
+             "value": "description=" + "[" * 65500 + "]" * 65500}
+
+
+@pytest.mark.parametrize("which", sorted(DEEP_SETS))
+def test_deep_set_is_refused_as_the_cli(simulate, which, tmp_path):
+    # Issue 56: these overflowed the stack, killing the interpreter.
+    spec = DEEP_SETS[which]
+    cli = simulate(TINY, "--quiet", "--out", tmp_path, "--set", spec)
+    assert cli.returncode == 2, cli.stderr[-300:]
+    assert cli.stderr.count("\n") == 1 and "deeper than 128 levels" in cli.stderr
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(TINY, progress=False, sets=[spec])
+    assert str(err.value) == cli.stderr.strip()
+
+
+def test_deep_gltf_hierarchy_through_load_scene(tmp_path):
+    # Issue 56: a million-level node chain crashed assimp (SEGV) through load_scene too.
+    quad = json.load(open(os.path.join(ROOT, "tests/fixtures/gltf/quad.gltf")))
+    leaf = quad["nodes"][0]
+    quad["nodes"] = [{"children": [i + 1]} for i in range(999999)] + [leaf]
+    (tmp_path / "deep.gltf").write_text(json.dumps(quad))
+    with pytest.raises(rtcsim.InputError, match="deep.gltf: JSON key /nodes/999/children: node hierarchy nested "
+                                                "deeper than 1000 levels"):
+        rtcsim.load_scene({"type": "file", "mesh": {"path": str(tmp_path / "deep.gltf")}})

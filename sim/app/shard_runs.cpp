@@ -98,6 +98,9 @@ int run_merge(const CliOptions& cli) {
     if (first.build != build_id())
         throw InputError(first.dir + "/shard.json: /build: written by rtcsim " + first.build + ", this is " +
                          build_id() + " (merge with the build that ran the shards)");
+    // shard.json's overrides are checked as the command line's are, named by their key there.
+    for (std::size_t i = 0; i < first.sets.size(); ++i)
+        check_set_depth(first.sets[i], first.dir + "/shard.json: /sets/" + std::to_string(i));
     RunPlan plan = plan_config_text(first.config_file, first.config_text, first.sets, cli.limits);
     plan.command_line = cli.command_line;
     if (plan.points.size() != first.points)
