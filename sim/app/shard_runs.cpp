@@ -2,6 +2,7 @@
 
 #include "sim/app/output_dir.h"
 #include "sim/app/run_all.h"
+#include "sim/config/input_files.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/shard/frame_file.h"
 #include "sim/shard/manifest.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <iostream>
 
 namespace fs = std::filesystem;
@@ -29,6 +31,14 @@ std::string unit_label(const ShardUnit& u, std::size_t points) {
     std::string s = points > 1 ? "point " + std::to_string(u.point) : std::string("the frame");
     if (u.bands > 1) s += ", band " + std::to_string(u.band) + " of " + std::to_string(u.bands);
     return s;
+}
+
+// Every input file of the plan (sim/config/input_files.h) -> FNV-1a of its
+// contents: a data file as it is now, a preset as it was loaded.
+std::map<std::string, std::string> input_file_hashes(const RunPlan& plan) {
+    std::map<std::string, std::string> out;
+    for (const InputFile& f : input_files(plan.parsed)) out[f.path] = f.text ? config_hash(*f.text) : file_hash(f.path);
+    return out;
 }
 
 }  // namespace
@@ -54,6 +64,7 @@ int run_shard(const CliOptions& cli) {
     manifest.sets = cli.sets;
     manifest.points = plan.points.size();
     manifest.config_hash = config_hash(plan.config.dump());
+    manifest.inputs = input_file_hashes(plan);  // before tracing; presets as they were loaded
     const std::vector<ShardUnit> units = units_of_shard(plan.points.size(), spec);
     if (!cli.quiet)
         std::cerr << "shard " << spec.index << "/" << spec.count << " of " << cli.config << ": " << units.size()
@@ -111,6 +122,9 @@ int run_merge(const CliOptions& cli) {
     if (first.config_hash != config_hash(plan.config.dump()))
         throw InputError(first.dir + "/shard.json: /config_hash: " + first.config_hash + ", but its config_text plans " +
                          config_hash(plan.config.dump()) + " (edited, or written by another build)");
+    // The data and preset files as they are now must be the ones the shards
+    // read: the merge re-prices with the presets and reports the scene.
+    check_same_inputs(first.inputs, first.dir + "/shard.json", input_file_hashes(plan), "the files as they are now");
     // Per point, its bands in order: (shard, unit).
     using Band = std::pair<const ShardManifest*, const ShardManifest::Unit*>;
     std::vector<std::vector<Band>> bands(plan.points.size());

@@ -210,7 +210,10 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
 }
 
 CostModel load_cost_model(const std::string& path) {
-    return parse_cost_model(read_text_file(path), path);
+    std::string text = read_text_file(path);
+    CostModel m = parse_cost_model(text, path);
+    m.files = prepend_preset_file(path, std::move(text), m.files);  // a derived preset's bases follow it
+    return m;
 }
 
 std::string cost_model_to_json(const CostModel& m) {

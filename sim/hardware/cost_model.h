@@ -5,6 +5,7 @@
 
 #include "core/sinks.h"
 #include "sim/hardware/execution_model.h"
+#include "sim/hardware/presets/preset_file.h"
 #include "sim/hardware/uncertainty/cost_uncertainty.h"
 
 #include <array>
@@ -65,6 +66,7 @@ struct CostModel {
     std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
     std::vector<ComposedCost> composed;          // costs made of other costs, in order
     std::string derived_from;                    // the base preset's name (a derived preset), else empty
+    PresetFiles files;                           // as read by load_cost_model (null when parsed from text)
     // Methods this machine could run by its features but does not build as
     // modelled (RDNA4 builds oriented boxes over triangles only): method ->
     // why. Still priced; tables and report.json label them hypothetical.
