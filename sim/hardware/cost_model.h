@@ -119,6 +119,10 @@ struct PricedRun {
 // Orders sums so that each comes after the sums among its terms (settle()
 // then computes them in one pass); false when they refer to each other in a cycle.
 [[nodiscard]] bool order_compositions(std::vector<ComposedCost>& composed);
+// After order_compositions failed, with what it left in `composed`: one
+// cycle as "a -> b -> c -> a" (the sums left over also include sums that
+// only depend on a cycle, which an error must not name).
+[[nodiscard]] std::string composition_cycle(const std::vector<ComposedCost>& composed);
 // The hardware features a preset may list; a method needs some of them
 // (MethodInfo::needs, a test checks every method's needs are here).
 inline constexpr const char* kHardwareFeatures[] = {"custom_primitives", "instance_transforms", "lss", "obb_nodes",
