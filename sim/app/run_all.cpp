@@ -8,6 +8,7 @@
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
+#include "sim/config/input_files.h"
 #include "sim/config/run_config.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
@@ -164,7 +165,7 @@ int run_all(const CliOptions& cli) {
     // Before any work: a calibrate output that would overwrite a file.
     if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
     const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", cli.config);
-    OutputDir owned(out, cli.limits.force);  // locked until the run ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the run ends
     const int status = run_planned(plan, cli, out, nullptr);
     owned.finish();
     return status;

@@ -54,7 +54,7 @@ int run_shard(const CliOptions& cli) {
     const std::string out = cli.out ? *cli.out
                                     : default_output_dir(plan.parsed.front().name, "-shard" + std::to_string(spec.index),
                                                          cli.config);
-    OutputDir owned(out, cli.limits.force);  // locked until the shard ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the shard ends
     make_dir((fs::path(out) / "frames").string());
     ShardManifest manifest;
     manifest.build = build_id();
@@ -184,7 +184,7 @@ int run_merge(const CliOptions& cli) {
                                                                     : "is inside the shard directory ") +
                              m.dir + " it merges: choose another --out");
     }
-    OutputDir owned(out, cli.limits.force);  // locked until the merge ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the merge ends
     if (!cli.quiet) std::cerr << "merging " << manifests.size() << " shards -> " << out << "\n";
     const int status = run_planned(plan, cli, out, &frames);
     owned.finish();
