@@ -53,8 +53,9 @@ void check_index(const nlohmann::json& v, const nlohmann::json& root, const char
 
 // The node hierarchy: disjoint trees (glTF 2.0, 3.5.3), nested at most
 // kMaxGltfNodeDepth levels. assimp walks it recursively, once per level, so
-// a million-level chain overflowed its stack (SEGV) and a cycle never ends;
-// modelling tools' hierarchies nest a few dozen levels.
+// a million-level chain overflowed its stack (SEGV) before the loader's own
+// 256-level limit was reached, and a cycle never ends; modelling tools'
+// hierarchies nest a few dozen levels.
 void check_node_tree(const nlohmann::json& root, const std::string& file) {
     const auto nodes = root.find("nodes");
     if (nodes == root.end()) return;

@@ -122,7 +122,7 @@ TEST_CASE("plan: the break-even maps' work is estimated and bounded (--max-break
 }
 
 TEST_CASE("plan: a preset's hypothetical method must be a method") {
-    json p = preset("rdna4", "rdna4-typo");
+    json p = preset("turing-per-ray-guess", "typo");
     p["hypothetical"] = {{"obb-quantised", "[I] misspelt"}};
     const std::string file = write("typo.json", p);
     json c = tiny();
