@@ -130,7 +130,7 @@ TEST_CASE("plan: a preset's hypothetical method must be a method") {
     check_error(plan_error(c), file + ": /hypothetical/obb-quantised: not a method (expected one of ", "obb-quantized");
 }
 
-TEST_CASE("derived presets: a base's error names the derived preset and /cost/N; cycles by their members") {
+TEST_CASE("derived presets: a base's error names the derived preset and /cost/N, cycles name their members") {
     json base = preset("turing-per-ray-guess", "base");
     base["cycles"].erase("ray");
     write("broken_base.json", base);
