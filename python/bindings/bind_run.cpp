@@ -6,12 +6,14 @@
 
 #include "sim/app/output_dir.h"
 #include "sim/app/run_all.h"
+#include "sim/config/input_files.h"
 #include "sim/report/report.h"
 #include "sim/plot/plot_svg.h"  // write_text_file
 #include "sim/util/json_file.h"
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace rtc::py_bind {
 
@@ -26,6 +28,8 @@ WorkLimits limits_from(const py::dict& d) {
     WorkLimits l;
     // As the CLI's --max-rays and --max-memory: a finite number >= 1.
     const auto ceiling = [](const std::string& k, const py::handle& value) {
+        if (!py::isinstance<py::int_>(value) && !py::isinstance<py::float_>(value))
+            throw InputError("limits: " + k + ": expected a finite number >= 1, got " + std::string(py::str(py::repr(value))));
         const double v = value.cast<double>();
         if (!(v >= 1.0) || !std::isfinite(v))
             throw InputError("limits: " + k + ": expected a finite number >= 1, got " + std::string(py::str(py::repr(value))));
@@ -36,8 +40,14 @@ WorkLimits limits_from(const py::dict& d) {
         if (k == "max_rays") l.max_rays = ceiling(k, value);
         else if (k == "max_memory") l.max_memory = ceiling(k, value);
         else if (k == "max_sweep_points") l.max_sweep_points = ceiling(k, value);
-        else if (k == "force") l.force = value.cast<bool>();
-        else throw std::invalid_argument("limits: unknown key " + k + " (max_rays, max_memory, max_sweep_points, force)");
+        else if (k == "max_break_even") l.max_break_even = ceiling(k, value);
+        else if (k == "force") {
+            if (!py::isinstance<py::bool_>(value))
+                throw InputError("limits: force: expected True or False, got " + std::string(py::str(py::repr(value))));
+            l.force = value.cast<bool>();
+        }
+        else throw std::invalid_argument("limits: unknown key " + k +
+                                         " (max_rays, max_memory, max_sweep_points, max_break_even, force)");
     }
     return l;
 }
@@ -49,14 +59,25 @@ PlanHandle make_plan(const std::string& text, const std::string& file, const std
 }
 
 // The outputs the CLI writes for one run: report.json and, unless the config
-// turns them off, the render, heat maps, ratio maps and .npy arrays.
-void write_outputs(const RunResult& r, const std::string& dir) {
-    make_dir(dir);  // an InputError naming it, not a filesystem_error
+// turns them off, the render, heat maps, ratio maps and .npy arrays, into a
+// directory prepared (empty, locked, marked) by the caller as the CLI's is.
+void write_run_files(const RunResult& r, const std::string& dir) {
     if (r.config.output.images) write_images(r, dir);
     if (r.config.output.arrays) (void)write_arrays(r, dir);
-    (void)write_break_even_maps(r, dir);
+    const BreakEvenGrids grids = break_even_grids(r);  // once, for the pictures and the report
+    (void)write_break_even_maps(r, grids, dir);
+    const nlohmann::ordered_json break_even = break_even_json(r, grids);
     // Last: a report.json beside cut arrays is never left behind.
-    write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
+    write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r, &break_even).dump(2) + "\n");
+}
+
+// Under the CLI's rules (sim/app/output_dir.h): a missing or empty directory
+// (or, with force, one simulate wrote), locked while written, marked complete
+// only after its last file.
+void write_outputs(const RunResult& r, const std::string& dir, bool force) {
+    OutputDir owned(dir, force);
+    write_run_files(r, dir);
+    owned.finish();
 }
 
 RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, bool progress,
@@ -69,13 +90,18 @@ RunHandle run_plan_point(const PlanHandle& h, std::size_t i, unsigned threads, b
     ctx.keep_rays = keep_rays;
     ctx.out_dir = out_dir;
     auto run = std::make_shared<RunResult>();
+    // The directory prepared as the CLI's before tracing (rays.bin is written
+    // while tracing): owned until the last file, then marked complete; an
+    // error or Ctrl-C leaves it marked unfinished, which the readers refuse.
+    std::optional<OutputDir> owned;
+    if (!out_dir.empty()) owned.emplace(out_dir, h.plan->limits.force, input_paths(h.plan->parsed, h.plan->file));
     // Tracing runs on `threads` cores without Python, and Ctrl-C stops it.
     run_interruptible([&] {
-        if (!out_dir.empty()) make_dir(out_dir);
         *run = run_point(*h.plan, i, ctx);
         throw_if_interrupted();  // nothing written after a late Ctrl-C
-        if (!out_dir.empty()) write_outputs(*run, out_dir);
+        if (owned) write_run_files(*run, out_dir);
     });
+    if (owned) owned->finish();
     return {run};
 }
 
@@ -111,6 +137,7 @@ void bind_run(py::module_& m) {
             d["memory_bytes"] = w.memory_bytes;
             d["rays_detail"] = w.rays_detail;
             d["memory_detail"] = w.memory_detail;
+            d["break_even"] = w.break_even;
             return d;
         }, "The work estimate the limits were checked against (rays over every method and point).")
         .def("__len__", [](const PlanHandle& h) { return h.plan->points.size(); })
@@ -128,10 +155,12 @@ void bind_run(py::module_& m) {
     py::class_<RunHandle>(m, "Run", "One traced run (a RunResult).")
         .def("report_json", [](const RunHandle& h, int indent) { return report_json(*h.run).dump(indent); },
              py::arg("indent") = -1, "report.json's text (the CLI writes indent=2 plus a newline).")
-        .def("write_outputs", [](const RunHandle& h, const std::string& dir) {
+        .def("write_outputs", [](const RunHandle& h, const std::string& dir, bool force) {
             py::gil_scoped_release release;
-            write_outputs(*h.run, dir);
-        }, py::arg("dir"), "report.json, the images and break-even maps, as the CLI writes them.")
+            write_outputs(*h.run, dir, force);
+        }, py::arg("dir"), py::arg("force") = false,
+           "report.json, the images and break-even maps, as the CLI writes them and under its rules: `dir` "
+           "missing or empty (force: or one simulate wrote, emptied first), marked complete when done.")
         .def_property_readonly("name", [](const RunHandle& h) { return h.run->config.name; })
         .def_property_readonly("file", [](const RunHandle& h) { return h.run->config.file; })
         .def_property_readonly("baseline", [](const RunHandle& h) { return h.run->config.baseline; })

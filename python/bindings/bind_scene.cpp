@@ -141,6 +141,19 @@ void bind_scene(py::module_& m) {
         return SceneHandle{scene};
     }, py::arg("block"), py::arg("file"), py::arg("path") = "/scene",
           "Loads a `scene` block (JSON text); errors name `file` and `path`, data paths resolve beside `file`.");
+    m.def("load_scene_file", [](const std::string& file) {
+        // As the CLI reads a config: a missing file, a directory or bad JSON
+        // is an InputError naming the file (and line).
+        const nlohmann::json config = parse_json_text(read_text_file(file), file);
+        const bool whole = config.is_object() && config.contains("scene");
+        const nlohmann::json block = whole ? config["scene"] : config;
+        auto scene = std::make_shared<Scene>();
+        {
+            py::gil_scoped_release release;
+            *scene = load_scene(JsonReader(block, file, whole ? "/scene" : ""));
+        }
+        return SceneHandle{scene};
+    }, py::arg("file"), "Loads the scene of a config file (its `scene` block), or a file holding a scene block.");
 }
 
 }  // namespace rtc::py_bind

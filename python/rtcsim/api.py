@@ -39,8 +39,11 @@ def plan(config, sets=None, base=None, limits=None):
     strict parsing, work estimate). `config` is a path or a dict; for a dict,
     `base` names it in messages and relative paths resolve beside it
     (default: "<dict>", paths relative to the current directory). `limits`:
-    {"max_rays", "max_memory" (bytes), "max_sweep_points", "force"}, the
-    CLI's --max-rays, --max-memory and --force (same defaults)."""
+    {"max_rays", "max_memory" (bytes), "max_sweep_points", "max_break_even",
+    "force"}, the CLI's --max-rays, --max-memory, --max-break-even and --force
+    (same defaults)."""
+    if limits is not None and not isinstance(limits, Mapping):
+        raise TypeError(f"limits: expected a dict such as {{\"max_rays\": 1e11}}, got {type(limits).__name__}")
     limits = dict(limits or {})
     if isinstance(config, (str, os.PathLike)):
         return _rtcsim.Plan.from_file(os.fspath(config), _sets(sets), limits)
@@ -68,7 +71,9 @@ def run(config, threads=None, progress=True, *, sets=None, base=None, out=None, 
     progress: progress bars on stderr.
     sets: overrides as the CLI's --set ("key.path=value" strings or a dict).
     out: a directory to write what the CLI writes (report.json, images, and
-        rays/hits files when the config asks for them).
+        rays/hits files when the config asks for them), under the CLI's rules:
+        missing or empty (limits={"force": True}: or one simulate wrote,
+        emptied first), locked while the run writes, marked complete last.
     record_warps: keep every wave, so warp presets can re-price it (price()).
     limits: the CLI's work ceilings, e.g. {"max_rays": 1e11} or {"force": True}.
     Rays and hits are kept (result.method(m).rays / .hits) when the config's
@@ -114,6 +119,21 @@ def simulate(*args):
     return _rtcsim.simulate_main([os.fspath(a) if isinstance(a, os.PathLike) else str(a) for a in args])
 
 
+def _check_counts(counts, what):
+    """Counts are whole numbers >= 0: a negative or NaN one cast to uint64
+    priced as about 1e22 cycles (issue 56)."""
+    if counts.dtype == object or not (np.issubdtype(counts.dtype, np.number) or counts.dtype == bool):
+        raise TypeError(f"{what}: expected numbers, got {counts.dtype}")
+    if np.issubdtype(counts.dtype, np.complexfloating):
+        raise TypeError(f"{what}: expected real counts, got {counts.dtype}")
+    if np.issubdtype(counts.dtype, np.floating):
+        bad = ~np.isfinite(counts) | (counts < 0) | (counts != np.floor(counts))
+        if np.any(bad):
+            raise ValueError(f"{what}: expected whole numbers >= 0, got {counts[bad].flat[0]!r}")
+    elif np.issubdtype(counts.dtype, np.signedinteger) and np.any(counts < 0):
+        raise ValueError(f"{what}: expected counts >= 0, got {counts[counts < 0].flat[0]!r}")
+
+
 def price(counts, preset):
     """Cycles of counts under a preset, without tracing.
 
@@ -130,9 +150,11 @@ def price(counts, preset):
         from .results import event_index
         totals = np.zeros(len(_rtcsim.EVENT_NAMES), dtype=np.uint64)
         for event, n in counts.items():
+            _check_counts(np.asarray(n), f"counts[{event!r}]")
             totals[event_index(event)] = n
         counts = totals
     counts = np.asarray(counts)
+    _check_counts(counts, "counts")
     if model.is_warp:
         raise ValueError(f"{model.name} is a warp preset: it prices recorded waves, not counts; "
                          "pass a method of a run traced with record_warps=True")
@@ -150,11 +172,13 @@ def load_scene(scene, base=None):
     file = os.fspath(base) if base else "<dict>"
     if isinstance(scene, (str, os.PathLike)):
         file = os.fspath(scene)
-        with open(file) as f:
-            scene = json.load(f)
+        # Read as the CLI reads a config: its errors name the file and line.
+        return _rtcsim.load_scene_file(file)
     if not isinstance(scene, Mapping):
         raise TypeError(f"scene: expected a scene block, a config or a config file, got {type(scene).__name__}")
     block = scene["scene"] if "scene" in scene else scene
+    if not isinstance(block, Mapping):
+        raise TypeError(f"{file}: /scene: expected a scene block (dict), got {type(block).__name__}")
     return _rtcsim.load_scene(json.dumps(block, default=_json_default), file, "/scene")
 
 

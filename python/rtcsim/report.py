@@ -195,6 +195,12 @@ def require_finished(directory):
                          "or is still running)")
 
 
+def _path_argument(value, name, what):
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"{name}: expected {what} (a str or path), got {type(value).__name__}")
+    return os.fspath(value)
+
+
 def _read_json(path):
     from ._rtcsim import InputError
     try:
@@ -214,7 +220,7 @@ def _read_json(path):
 def load_report(path):
     """A report.json file, or the report.json inside a directory. Raises
     rtcsim.InputError for a cut file or an unfinished run's directory."""
-    path = os.fspath(path)
+    path = _path_argument(path, "path", "a report.json file or a CLI output directory")
     if os.path.isdir(path):
         path = os.path.join(path, "report.json")
     require_finished(os.path.dirname(path) or ".")
@@ -225,7 +231,11 @@ def load_reports(directory):
     """Every report of a CLI output directory: its report.json (one run, or a
     sweep's combined report with every point), else the sweep points'
     `<index>_<label>/report.json` in index order."""
-    directory = os.fspath(directory)
+    directory = _path_argument(directory, "directory", "a CLI output directory")
+    if not os.path.isdir(directory):
+        from ._rtcsim import InputError
+        raise InputError(f"{directory}: not a directory (load_reports reads a CLI output directory, "
+                         "load_report one report.json)")
     require_finished(directory)
     single = os.path.join(directory, "report.json")
     if os.path.isfile(single):

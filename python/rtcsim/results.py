@@ -4,6 +4,7 @@ data, rays and hits. Arrays view the C++ memory (no copy) and keep the run
 alive; they are read-only.
 """
 import json
+import os
 
 import numpy as np
 
@@ -37,7 +38,7 @@ class MethodResult:
         return getattr(self._m, name)
 
     def __dir__(self):
-        return sorted(set(dir(type(self)) | set(dir(self._m))))
+        return sorted(set(dir(type(self))) | set(dir(self._m)))
 
     @property
     def events(self):
@@ -130,9 +131,11 @@ class Result(Report):
         name = method or next(n for n, m in self._methods.items() if m.runnable)
         return self.method(name).radiance
 
-    def write_outputs(self, directory):
-        """report.json and the images, exactly as the CLI writes them."""
-        self._run.write_outputs(str(directory))
+    def write_outputs(self, directory, force=False):
+        """report.json and the images, exactly as the CLI writes them and under
+        its rules: `directory` missing or empty (force=True: or one simulate
+        wrote, emptied first), locked while written, marked complete last."""
+        self._run.write_outputs(os.fspath(directory), force)
 
     def __repr__(self):
         s = self.speedup() if self.others else None

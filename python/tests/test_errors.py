@@ -163,3 +163,76 @@ def test_the_estimate_bounds_the_peak_of_small_clusters(simulate, tmp_path):
     assert measured <= memory, f"peak {measured / 2**20:.0f} MiB above the estimate {memory / 2**20:.0f} MiB"
     # Not a bound by a mile: within 4x (measured 13.5 KB per cluster at scale, 16 KiB estimated).
     assert memory < 4 * measured
+
+
+DEEP_SETS = {"key": "description" + ".a" * 60000 + "=1",
+             "value": "description=" + "[" * 65500 + "]" * 65500}
+
+
+@pytest.mark.parametrize("which", sorted(DEEP_SETS))
+def test_deep_set_is_refused_as_the_cli(simulate, which, tmp_path):
+    # Issue 56: these overflowed the stack, killing the interpreter.
+    spec = DEEP_SETS[which]
+    cli = simulate(TINY, "--quiet", "--out", tmp_path, "--set", spec)
+    assert cli.returncode == 2, cli.stderr[-300:]
+    assert cli.stderr.count("\n") == 1 and "deeper than 128 levels" in cli.stderr
+    with pytest.raises(rtcsim.InputError) as err:
+        rtcsim.run(TINY, progress=False, sets=[spec])
+    assert str(err.value) == cli.stderr.strip()
+
+
+def test_price_refuses_negative_and_nan_counts():
+    # Issue 56: cast to uint64, these priced as about 1e22 cycles.
+    n = len(rtcsim.EVENT_NAMES)
+    for bad in ({"ray": -1}, {"ray": float("nan")}, {"ray": 1.5}):
+        with pytest.raises(ValueError, match=r"counts\['ray'\]: expected"):
+            rtcsim.price(bad, "turing-per-ray-guess")
+    counts = [0] * n
+    counts[0] = -3
+    with pytest.raises(ValueError, match="counts: expected counts >= 0, got -3"):
+        rtcsim.price(counts, "turing-per-ray-guess")
+    pixels = __import__("numpy").zeros((2, 2, n))
+    pixels[1, 1, 0] = float("inf")
+    with pytest.raises(ValueError, match="counts: expected whole numbers >= 0, got inf"):
+        rtcsim.price(pixels, "turing-per-ray-guess")
+    with pytest.raises(TypeError, match="counts: expected numbers"):
+        rtcsim.price(["a"] * n, "turing-per-ray-guess")
+    assert rtcsim.price({"ray": 2}, "turing-per-ray-guess").total_cycles >= 0
+
+
+def test_bad_arguments_say_what_was_expected(tmp_path):
+    with pytest.raises(TypeError, match="limits: expected a dict"):
+        rtcsim.plan(TINY, limits=5)
+    with pytest.raises(rtcsim.InputError, match="limits: max_rays: expected a finite number >= 1, got 'many'"):
+        rtcsim.plan(TINY, limits={"max_rays": "many"})
+    with pytest.raises(rtcsim.InputError, match="limits: force: expected True or False, got 'yes'"):
+        rtcsim.plan(TINY, limits={"force": "yes"})
+    with pytest.raises(TypeError, match="path: expected a report.json file or a CLI output directory"):
+        rtcsim.load_report(42)
+    with pytest.raises(TypeError, match="directory: expected a CLI output directory"):
+        rtcsim.load_reports(None)
+    with pytest.raises(rtcsim.InputError, match=f"{tmp_path / 'nope'}: not a directory"):
+        rtcsim.load_reports(tmp_path / "nope")
+    with pytest.raises(rtcsim.InputError, match=f"{tmp_path / 'nope.json'}"):
+        rtcsim.load_scene(tmp_path / "nope.json")
+    (tmp_path / "bad.json").write_text('{"scene": [1,')
+    with pytest.raises(rtcsim.InputError, match=f"{tmp_path / 'bad.json'}: line 1: invalid JSON"):
+        rtcsim.load_scene(tmp_path / "bad.json")
+    with pytest.raises(TypeError, match="/scene: expected a scene block"):
+        rtcsim.load_scene({"scene": 3})
+
+
+def test_dir_of_a_method_result(tiny):
+    names = dir(tiny.method("obb"))  # raised TypeError (a list | a set)
+    assert "events" in names and "totals" in names
+
+
+def test_deep_gltf_hierarchy_through_load_scene(tmp_path):
+    # Issue 56: a million-level node chain crashed assimp (SEGV) through load_scene too.
+    quad = json.load(open(os.path.join(ROOT, "tests/fixtures/gltf/quad.gltf")))
+    leaf = quad["nodes"][0]
+    quad["nodes"] = [{"children": [i + 1]} for i in range(999999)] + [leaf]
+    (tmp_path / "deep.gltf").write_text(json.dumps(quad))
+    with pytest.raises(rtcsim.InputError, match="deep.gltf: JSON key /nodes/255/children: node hierarchy nested "
+                                                "deeper than 256 levels"):
+        rtcsim.load_scene({"type": "file", "mesh": {"path": str(tmp_path / "deep.gltf")}})

@@ -149,12 +149,12 @@ print("again %.3f" % r.speedup("obb"), flush=True)
 """
 
 
-def interrupt_after_start(args, delay=1.0):
+def interrupt_after_start(args, delay=1.0, sig=signal.SIGINT):
     p = subprocess.Popen(args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     assert p.stdout.readline().strip() == "tracing"
     time.sleep(delay)
     sent = time.monotonic()
-    p.send_signal(signal.SIGINT)
+    p.send_signal(sig)
     out, err = p.communicate(timeout=60)
     return p.returncode, out, err, sent
 
@@ -170,12 +170,15 @@ def test_ctrl_c_stops_rtcsim_run_with_keyboard_interrupt(tmp_path):
     assert any(s.startswith("again ") for s in stdout.splitlines())
     # Nothing finished-looking: no report.json, so no reader takes it for a run.
     assert not (out / "report.json").exists()
-    with pytest.raises((rtcsim.InputError, OSError)):
+    # Marked unfinished as the CLI's directory is (issue 56: out= took no mark).
+    assert "state: running" in (out / ".rtcsim-output").read_text()
+    with pytest.raises(rtcsim.InputError, match="an unfinished simulate run"):
         rtcsim.load_report(out)
-    assert rtcsim.load_reports(out) == []
+    with pytest.raises(rtcsim.InputError, match="an unfinished simulate run"):
+        rtcsim.load_reports(out)
     plot = subprocess.run([sys.executable, "-m", "rtcsim.plot", out, "--out", tmp_path / "figures"],
                           capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
-    assert plot.returncode == 2 and "no report.json found" in plot.stderr
+    assert plot.returncode == 2 and "an unfinished simulate run" in plot.stderr, plot.stderr
 
 
 def test_ctrl_c_stops_the_cli_with_its_directory_unfinished(simulate, tmp_path):
@@ -197,3 +200,52 @@ def test_ctrl_c_stops_the_cli_with_its_directory_unfinished(simulate, tmp_path):
         rtcsim.load_report(out)
     merge = simulate("merge", out, "--out", tmp_path / "merged")
     assert merge.returncode == 2 and "an unfinished simulate run" in merge.stderr, merge.stderr
+
+
+def test_sigterm_stops_the_cli_as_ctrl_c_does(simulate, tmp_path):
+    # Issue 56: SIGTERM (what Slurm sends at a time limit) was not handled: it
+    # killed the run with .partial files left and the mark saying running.
+    exe = os.environ.get("RTCSIM_SIMULATE") or os.path.join(ROOT, "build", "simulate")
+    out = tmp_path / "cli"
+    sets = [a for k, v in LONG.items() for a in ("--set", f"{k}={str(v).lower()}")]
+    code, stdout, stderr, sent = interrupt_after_start(
+        ["sh", "-c", 'echo tracing; exec "$0" "$@"', exe, TINY, "--quiet", "--threads", "1", "--out", str(out),
+         *sets], sig=signal.SIGTERM)
+    assert time.monotonic() - sent < PROMPT + 1
+    assert code == 143, stderr
+    assert "simulate: terminated (SIGTERM)" in stderr
+    assert "state: running" in (out / ".rtcsim-output").read_text()
+    assert not (out / "report.json").exists()
+    assert not [p.name for p in out.rglob("*.partial")]
+    with pytest.raises(rtcsim.InputError, match="an unfinished simulate run"):
+        rtcsim.load_report(out)
+
+
+# -- Python writes outputs under the CLI's rules (issue 56) ------------------------
+SMALL = {"workload.width": 8, "workload.height": 8, "output.images": False}
+
+
+def test_python_out_is_refused_in_a_finished_cli_directory(simulate, tmp_path):
+    # rtcsim.run(out=) wrote its report.json among a CLI run's files and left
+    # the mark saying complete, so load_report trusted the mix.
+    out = tmp_path / "cli"
+    done = simulate(TINY, "--quiet", "--out", out, *[a for k, v in SMALL.items()
+                                                     for a in ("--set", f"{k}={str(v).lower()}")])
+    assert done.returncode == 0, done.stderr
+    before = sorted(p.name for p in out.iterdir())
+    with pytest.raises(rtcsim.InputError, match="output directory exists and is not empty"):
+        rtcsim.run(TINY, progress=False, sets=SMALL, out=out)
+    assert sorted(p.name for p in out.iterdir()) == before
+    assert "state: complete" in (out / ".rtcsim-output").read_text()
+    # With force, as the CLI's --force: emptied, written, marked complete.
+    r = rtcsim.run(TINY, progress=False, sets=SMALL, out=out, limits={"force": True})
+    assert rtcsim.load_report(out).data["name"] == r.name
+    assert not (out / "results.csv").exists()  # the CLI's files are gone, not mixed in
+    # Result.write_outputs follows the same rules.
+    with pytest.raises(rtcsim.InputError, match="not empty"):
+        r.write_outputs(out)
+    r.write_outputs(out, force=True)
+    fresh = tmp_path / "fresh"
+    r.write_outputs(fresh)
+    assert "state: complete" in (fresh / ".rtcsim-output").read_text()
+    assert rtcsim.load_report(fresh).data["name"] == r.name

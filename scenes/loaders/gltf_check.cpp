@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <vector>
 
 namespace rtc {
 
@@ -50,6 +51,57 @@ void check_index(const nlohmann::json& v, const nlohmann::json& root, const char
                                 std::to_string(n));
 }
 
+// The node hierarchy: disjoint trees (glTF 2.0, 3.5.3), nested at most
+// kMaxGltfNodeDepth levels. assimp walks it recursively, once per level, so
+// a million-level chain overflowed its stack (SEGV) before the loader's own
+// 256-level limit was reached, and a cycle never ends; modelling tools'
+// hierarchies nest a few dozen levels.
+void check_node_tree(const nlohmann::json& root, const std::string& file) {
+    const auto nodes = root.find("nodes");
+    if (nodes == root.end()) return;
+    if (!nodes->is_array()) fail_key(file, "/nodes", "expected an array");
+    const std::size_t n = nodes->size();
+    std::vector<std::int64_t> parent(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+        const nlohmann::json& node = (*nodes)[i];
+        const std::string key = "/nodes/" + std::to_string(i);
+        if (!node.is_object()) fail_key(file, key, "expected an object");
+        const auto children = node.find("children");
+        if (children == node.end()) continue;
+        if (!children->is_array()) fail_key(file, key + "/children", "expected an array");
+        for (std::size_t c = 0; c < children->size(); ++c) {
+            const std::string child_key = key + "/children/" + std::to_string(c);
+            check_index((*children)[c], root, "nodes", file, child_key);
+            const auto child = (*children)[c].get<std::size_t>();
+            if (child == i) fail_key(file, child_key, "a node cannot be its own child");
+            if (parent[child] >= 0)
+                fail_key(file, child_key, "node " + std::to_string(child) + " is already a child of node " +
+                                              std::to_string(parent[child]) + " (the hierarchy must be trees)");
+            parent[child] = static_cast<std::int64_t>(i);
+        }
+    }
+    // Each node's depth by walking up to its root, remembered so every
+    // parent link is followed once; a walk that never reaches a root is a cycle.
+    std::vector<std::int64_t> depth(n, -1);
+    std::vector<std::size_t> path;
+    for (std::size_t i = 0; i < n; ++i) {
+        std::size_t at = i;
+        path.clear();
+        while (depth[at] < 0 && parent[at] >= 0 && path.size() <= n) {
+            path.push_back(at);
+            at = static_cast<std::size_t>(parent[at]);
+        }
+        if (path.size() > n) fail_key(file, "/nodes/" + std::to_string(i) + "/children", "the hierarchy has a cycle");
+        if (depth[at] < 0) depth[at] = 1;  // a root
+        for (auto it = path.rbegin(); it != path.rend(); ++it) {
+            depth[*it] = depth[static_cast<std::size_t>(parent[*it])] + 1;
+            if (depth[*it] > kMaxGltfNodeDepth)
+                fail_key(file, "/nodes/" + std::to_string(parent[*it]) + "/children",
+                         "node hierarchy nested deeper than " + std::to_string(kMaxGltfNodeDepth) + " levels");
+        }
+    }
+}
+
 }  // namespace
 
 void check_gltf_json(const std::filesystem::path& path, const std::string& file, bool binary) {
@@ -63,6 +115,7 @@ void check_gltf_json(const std::filesystem::path& path, const std::string& file,
         throw InputError(file + ": invalid JSON: " + e.what());
     }
     if (!root.is_object()) throw InputError(file + ": the glTF JSON is not an object");
+    check_node_tree(root, file);
     const auto meshes = root.find("meshes");
     if (meshes == root.end()) return;
     if (!meshes->is_array()) fail_key(file, "/meshes", "expected an array");

@@ -12,7 +12,11 @@ namespace rtc {
 // `attributes` object whose POSITION names an accessor, integer `indices`
 // naming an accessor if any, and a `mode` in 0..6 if any. assimp 5.2 crashes
 // (SEGV) on a line-loop primitive with indices and no POSITION, found by the
-// gltf fuzz harness; the error names the JSON key.
+// gltf fuzz harness. The node hierarchy must be trees (no node with two
+// parents, no cycle) nested at most kMaxGltfNodeDepth levels: assimp walks
+// it recursively (and load_mesh.cpp's own walk stops at 256 levels, after
+// assimp). The error names the JSON key.
+inline constexpr int kMaxGltfNodeDepth = 256;
 void check_gltf_json(const std::filesystem::path& path, const std::string& file, bool binary);
 
 }  // namespace rtc

@@ -62,6 +62,9 @@ options (--opt value or --opt=value):
                         (every method and sweep point; default 1e10)
   --max-memory SIZE     refuse runs estimated to need more memory, e.g. 8G or
                         512M (default: 3/4 of physical memory)
+  --max-break-even N    refuse break-even maps of more than N cell prices in all
+                        (cells x cost models x methods, every map and point;
+                        default 2e8, about 40 s)
   --force               go on anyway: run above those ceilings (and sweeps above
                         10,000 points), empty an output directory an earlier run
                         of simulate wrote, let calibrate overwrite its `output`
@@ -137,7 +140,7 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     o.command_line.insert(o.command_line.end(), args.begin(), args.end());
     CLI::App app{"simulate"};
     app.set_help_flag();  // cli_help() is the help text
-    std::string out, threads, max_rays, max_memory, shard, shards;
+    std::string out, threads, max_rays, max_memory, max_break_even, shard, shards;
     std::vector<std::string> positional;
     app.add_flag("-h,--help", o.help);
     app.add_flag("--version", o.version);
@@ -147,7 +150,8 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     app.add_flag("--estimate", o.estimate);
     // Given twice, the last value wins (as with --set, later overrides earlier).
     for (const auto& [name, value] : {std::pair{"--out", &out}, {"--threads", &threads}, {"--max-rays", &max_rays},
-                                      {"--max-memory", &max_memory}, {"--shard", &shard}, {"--shards", &shards}})
+                                      {"--max-memory", &max_memory}, {"--max-break-even", &max_break_even},
+                                      {"--shard", &shard}, {"--shards", &shards}})
         app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     // One value per --set (a vector option would swallow the config name).
     app.add_option("--set", o.sets)
@@ -177,14 +181,17 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
                              threads + "\"");
         o.threads = n;
     }
-    if (given("--max-rays")) {
-        require_value(max_rays, "--max-rays");
+    const auto count_option = [&](const char* name, const std::string& text) {
+        require_value(text, name);
         double n = 0.0;
-        const auto [p, ec] = std::from_chars(max_rays.data(), max_rays.data() + max_rays.size(), n);
-        if (ec != std::errc() || p != max_rays.data() + max_rays.size() || !(n >= 1.0) || !std::isfinite(n))
-            throw InputError("simulate: --max-rays: expected a number >= 1 such as 1e9, got \"" + max_rays + "\"");
-        o.limits.max_rays = n;
-    }
+        const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+        if (ec != std::errc() || p != text.data() + text.size() || !(n >= 1.0) || !std::isfinite(n))
+            throw InputError(std::string("simulate: ") + name + ": expected a number >= 1 such as 1e9, got \"" + text +
+                             "\"");
+        return n;
+    };
+    if (given("--max-rays")) o.limits.max_rays = count_option("--max-rays", max_rays);
+    if (given("--max-break-even")) o.limits.max_break_even = count_option("--max-break-even", max_break_even);
     if (given("--max-memory")) {
         require_value(max_memory, "--max-memory");
         const std::optional<double> n = parse_byte_size(max_memory);

@@ -1,9 +1,12 @@
 #include "sim/app/output_dir.h"
 
 #include "core/input_error.h"
+#include "sim/execution/interrupt.h"
 #include "sim/util/json_file.h"
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -58,11 +61,14 @@ void make_dir(const std::string& dir) {
         throw InputError(dir + ": cannot create output directory" + (ec ? " (" + ec.message() + ")" : ""));
 }
 
-OutputDir::OutputDir(std::string dir, bool force) : dir_(std::move(dir)) {
+OutputDir::OutputDir(std::string dir, bool force, const std::vector<std::string>& inputs) : dir_(std::move(dir)) {
     std::error_code ec;
     if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
         throw InputError(dir_ + ": output path exists and is not a directory");
     const std::string mark = mark_of(dir_);
+    if (fs::is_symlink(fs::symlink_status(mark, ec)))
+        throw InputError(mark + ": is a symbolic link (a copy made with cp -rs?): simulate does not write through "
+                                "one; remove it or choose another --out");
     // A directory simulate did not write is refused before anything is
     // created in it.
     if (fs::is_directory(dir_, ec) && !fs::exists(mark, ec) && has_outputs(dir_))
@@ -75,14 +81,24 @@ OutputDir::OutputDir(std::string dir, bool force) : dir_(std::move(dir)) {
     make_dir(dir_);
     // Lock the mark. A run that finishes renames a new mark into place, so
     // the lock is retried until it is on the file the path names.
+    const char* no_lock = std::getenv("RTCSIM_NO_LOCK");
+    const bool lock = !(no_lock && std::string(no_lock) == "1");
     for (int attempt = 0;; ++attempt) {
-        lock_fd_ = ::open(mark.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        lock_fd_ = ::open(mark.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+        if (lock_fd_ < 0 && errno == ELOOP)
+            throw InputError(mark + ": is a symbolic link: simulate does not write through one");
         if (lock_fd_ < 0) throw InputError(dir_ + ": output directory is not writable (" + std::strerror(errno) + ")");
+        if (!lock) break;
         if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+            const int error = errno;
             ::close(lock_fd_);
             lock_fd_ = -1;
-            throw InputError(dir_ + ": output directory is in use by another simulate run (choose another --out, "
-                                    "or wait for it to finish)");
+            if (error == EWOULDBLOCK || error == EINTR)
+                throw InputError(dir_ + ": output directory is in use by another simulate run (choose another --out, "
+                                        "or wait for it to finish)");
+            throw InputError(mark + ": cannot lock (" + std::strerror(error) +
+                             "; the file system may not support locks): choose --out on another file system, or set "
+                             "RTCSIM_NO_LOCK=1 to run without the lock (nothing then stops a second run on it)");
         }
         struct stat held {}, named {};
         if (::fstat(lock_fd_, &held) == 0 && ::stat(mark.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
@@ -100,6 +116,17 @@ OutputDir::OutputDir(std::string dir, bool force) : dir_(std::move(dir)) {
     };
     if (has_outputs(dir_)) {
         if (!force) fail(dir_ + ": output directory exists and is not empty (--force clears it, or choose another --out)");
+        // The run's inputs are read after this: emptying must not delete them.
+        const fs::path inside = fs::weakly_canonical(fs::absolute(dir_, ec), ec);
+        for (const std::string& input : inputs) {
+            std::error_code ic;
+            const fs::path file = fs::weakly_canonical(fs::absolute(input, ic), ic);
+            if (ic || ec) continue;
+            const auto [d, f] = std::mismatch(inside.begin(), inside.end(), file.begin(), file.end());
+            if (d == inside.end() && f != file.end())
+                fail(dir_ + ": --force would empty it, and it holds " + input +
+                     ", an input of this run: move the input out, or choose another --out");
+        }
         for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
             if (it->path().filename() == kOutputMark) continue;
             std::error_code rm;
@@ -118,7 +145,12 @@ OutputDir::~OutputDir() {
     if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
-void OutputDir::finish() { write_mark(dir_, "complete"); }
+void OutputDir::finish() {
+    // A stop requested after the run's last check (while its files were
+    // written): not marked complete, and the run exits 128 + the signal.
+    throw_if_interrupted();
+    write_mark(dir_, "complete");
+}
 
 void require_finished_output(const std::string& dir) {
     std::ifstream in(mark_of(dir), std::ios::binary);

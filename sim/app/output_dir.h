@@ -18,9 +18,17 @@
 // file is: OutputFile). Readers (simulate merge, rtcsim.load_report, python
 // -m rtcsim.plot) refuse a directory whose mark does not say complete: a run
 // that failed, was killed, or is still running.
+//
+// Never through a symlink: a mark that is a symbolic link (a `cp -rs` copy
+// of a finished directory) is refused, so the original is not marked.
+// --force never deletes the run's own inputs: a config, scene, ray file or
+// preset inside the directory is refused before anything is emptied. Where
+// the file system has no locks (flock fails with ENOSYS, ENOLCK, ...) the
+// run is refused saying so; RTCSIM_NO_LOCK=1 runs without the lock.
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rtc {
 
@@ -30,13 +38,15 @@ inline constexpr const char* kOutputMark = ".rtcsim-output";
 class OutputDir {
 public:
     // Makes `dir` ready for a run (see above) and checks it is writable.
-    // Throws InputError naming `dir`.
-    OutputDir(std::string dir, bool force);
+    // `inputs`: the files the run reads (input_paths), which --force must
+    // not delete. Throws InputError naming `dir`.
+    OutputDir(std::string dir, bool force, const std::vector<std::string>& inputs = {});
     ~OutputDir();
     OutputDir(const OutputDir&) = delete;
     OutputDir& operator=(const OutputDir&) = delete;
 
-    // Marks the run complete (call after its last file is written).
+    // Marks the run complete (call after its last file is written); throws
+    // Interrupted instead when a stop was requested (sim/execution/interrupt.h).
     void finish();
     [[nodiscard]] const std::string& path() const { return dir_; }
 

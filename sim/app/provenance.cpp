@@ -1,7 +1,6 @@
 #include "sim/app/provenance.h"
 
 #include "sim/config/config_json.h"
-#include "sim/util/json_file.h"
 #include "sim/util/process_memory.h"
 #include "sim/util/version.h"
 
@@ -16,17 +15,27 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 
-// A preset file as it was read: its path and its parsed contents.
-ojson preset_json(const std::string& path) {
-    std::error_code ec;
-    const std::filesystem::path abs = std::filesystem::absolute(path, ec);
+// A preset as it was read when the run was planned (before tracing): its
+// file and parsed contents, and for a derived preset its bases the same way.
+// Not read again here: an edit made while the run traced is not what it used.
+ojson preset_json(const std::string& path, const PresetFiles& files) {
     ojson j;
-    j["file"] = ec ? path : abs.lexically_normal().string();
-    try {
-        j["contents"] = ojson::parse(read_text_file(path));
-    } catch (const std::exception& e) {
-        j["contents"] = nullptr;  // read when the run started; gone or changed since
-        j["error"] = e.what();
+    if (!files || files->empty()) {  // a preset given as text (tests), no file behind it
+        j["file"] = path;
+        j["contents"] = nullptr;
+        return j;
+    }
+    const auto file_json = [](const PresetFile& f) {
+        ojson p;
+        p["file"] = f.path;
+        p["contents"] = ojson::parse(f.text, nullptr, false);  // parsed when loaded: valid
+        return p;
+    };
+    j = file_json(files->front());
+    if (files->size() > 1) {
+        ojson bases = ojson::array();
+        for (std::size_t i = 1; i < files->size(); ++i) bases.push_back(file_json((*files)[i]));
+        j["bases"] = std::move(bases);  // derived_from, then its own base, ...
     }
     return j;
 }
@@ -57,11 +66,13 @@ ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<
     j["effective_config"] = run_config_to_json(run.config, run.point.config);
     ojson cost = ojson::array();
     for (std::size_t i = 0; i < run.config.cost_presets.size(); ++i) {
-        ojson p = preset_json(run.config.cost_presets[i]);
+        ojson p = preset_json(run.config.cost_presets[i],
+                              i < run.config.costs.size() && run.config.costs[i] ? run.config.costs[i]->files : nullptr);
         p["name"] = i < run.costs.size() ? run.costs[i].name : std::string();
         cost.push_back(std::move(p));
     }
-    j["presets"] = {{"cost", cost}, {"memory", preset_json(run.config.memory_preset)}};
+    j["presets"] = {{"cost", cost}, {"memory", preset_json(run.config.memory_preset,
+                                                                       run.config.memory ? run.config.memory->files : nullptr)}};
     return j;
 }
 

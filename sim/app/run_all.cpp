@@ -8,6 +8,7 @@
 #include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
+#include "sim/config/input_files.h"
 #include "sim/config/run_config.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/report/report.h"
@@ -164,7 +165,7 @@ int run_all(const CliOptions& cli) {
     // Before any work: a calibrate output that would overwrite a file.
     if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
     const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", cli.config);
-    OutputDir owned(out, cli.limits.force);  // locked until the run ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the run ends
     const int status = run_planned(plan, cli, out, nullptr);
     owned.finish();
     return status;
@@ -181,13 +182,16 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         if (points.size() > 1) std::cerr << points.size() << " sweep points\n";
         std::cerr << "estimate: " << count_text(work.rays) << " rays, "
                   << (work.primitives > 0 ? count_text(work.primitives) + " primitives, " : std::string())
-                  << format_estimate_bytes(work.memory_bytes) << " of memory\n";
+                  << format_estimate_bytes(work.memory_bytes) << " of memory"
+                  << (work.break_even > 0 ? ", " + count_text(work.break_even) + " break-even cell prices" : std::string())
+                  << "\n";
     }
     std::vector<RunResult> runs;
     // The last point in full (per-pixel data too) while the next point has
     // the same trace: it is re-priced from it instead of traced again.
     std::optional<RunResult> traced;
     std::vector<std::string> point_dirs;  // relative to `out`; "" for a single run
+    std::vector<nlohmann::ordered_json> break_even;  // per point: report.json's "break_even"
     for (std::size_t i = 0; i < points.size(); ++i) {
         throw_if_interrupted();  // Ctrl-C between sweep points (sim/execution/interrupt.h)
         const std::string dir = points.size() == 1
@@ -220,9 +224,13 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
             if (parsed[i].output.images) write_images(r, dir, cli.threads);
             if (arrays.valid()) arrays.get();
         }
-        (void)write_break_even_maps(r, dir);
+        // The maps' grids once per point, for the pictures and the reports.
+        const BreakEvenGrids grids = break_even_grids(r);
+        (void)write_break_even_maps(r, grids, dir);
+        break_even.push_back(break_even_json(r, grids));
         // Last of the point's files (the directory's mark says when the run is complete).
-        write_text_file((std::filesystem::path(dir) / "report.json").string(), report_json(r).dump(2) + "\n");
+        write_text_file((std::filesystem::path(dir) / "report.json").string(),
+                        report_json(r, &break_even.back()).dump(2) + "\n");
         traced.reset();
         // (Ray and hit files are written while tracing: such points trace.)
         if (i + 1 < points.size() && same_trace(points[i].config, points[i + 1].config) &&
@@ -237,7 +245,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         }
         runs.push_back(std::move(r));
         point_dirs.push_back(points.size() == 1 ? "" : std::filesystem::path(dir).filename().string());
-        write_sweep_outputs(runs, point_dirs, out);
+        write_sweep_outputs(runs, point_dirs, out, &break_even);
     }
     write_sweep_plots(runs, out);
     if (cli.calibrate) calibrate_runs(runs, config, plan.file, out, cli.quiet, cli.limits.force);

@@ -2,6 +2,7 @@
 
 #include "sim/app/output_dir.h"
 #include "sim/app/run_all.h"
+#include "sim/config/input_files.h"
 #include "sim/plot/plot_svg.h"
 #include "sim/shard/frame_file.h"
 #include "sim/shard/manifest.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <iostream>
 
 namespace fs = std::filesystem;
@@ -31,6 +33,14 @@ std::string unit_label(const ShardUnit& u, std::size_t points) {
     return s;
 }
 
+// Every input file of the plan (sim/config/input_files.h) -> FNV-1a of its
+// contents: a data file as it is now, a preset as it was loaded.
+std::map<std::string, std::string> input_file_hashes(const RunPlan& plan) {
+    std::map<std::string, std::string> out;
+    for (const InputFile& f : input_files(plan.parsed)) out[f.path] = f.text ? config_hash(*f.text) : file_hash(f.path);
+    return out;
+}
+
 }  // namespace
 
 int run_shard(const CliOptions& cli) {
@@ -44,7 +54,7 @@ int run_shard(const CliOptions& cli) {
     const std::string out = cli.out ? *cli.out
                                     : default_output_dir(plan.parsed.front().name, "-shard" + std::to_string(spec.index),
                                                          cli.config);
-    OutputDir owned(out, cli.limits.force);  // locked until the shard ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the shard ends
     make_dir((fs::path(out) / "frames").string());
     ShardManifest manifest;
     manifest.build = build_id();
@@ -54,6 +64,7 @@ int run_shard(const CliOptions& cli) {
     manifest.sets = cli.sets;
     manifest.points = plan.points.size();
     manifest.config_hash = config_hash(plan.config.dump());
+    manifest.inputs = input_file_hashes(plan);  // before tracing; presets as they were loaded
     const std::vector<ShardUnit> units = units_of_shard(plan.points.size(), spec);
     if (!cli.quiet)
         std::cerr << "shard " << spec.index << "/" << spec.count << " of " << cli.config << ": " << units.size()
@@ -98,6 +109,9 @@ int run_merge(const CliOptions& cli) {
     if (first.build != build_id())
         throw InputError(first.dir + "/shard.json: /build: written by rtcsim " + first.build + ", this is " +
                          build_id() + " (merge with the build that ran the shards)");
+    // shard.json's overrides are checked as the command line's are, named by their key there.
+    for (std::size_t i = 0; i < first.sets.size(); ++i)
+        check_set_depth(first.sets[i], first.dir + "/shard.json: /sets/" + std::to_string(i));
     RunPlan plan = plan_config_text(first.config_file, first.config_text, first.sets, cli.limits);
     plan.command_line = cli.command_line;
     if (plan.points.size() != first.points)
@@ -108,6 +122,9 @@ int run_merge(const CliOptions& cli) {
     if (first.config_hash != config_hash(plan.config.dump()))
         throw InputError(first.dir + "/shard.json: /config_hash: " + first.config_hash + ", but its config_text plans " +
                          config_hash(plan.config.dump()) + " (edited, or written by another build)");
+    // The data and preset files as they are now must be the ones the shards
+    // read: the merge re-prices with the presets and reports the scene.
+    check_same_inputs(first.inputs, first.dir + "/shard.json", input_file_hashes(plan), "the files as they are now");
     // Per point, its bands in order: (shard, unit).
     using Band = std::pair<const ShardManifest*, const ShardManifest::Unit*>;
     std::vector<std::vector<Band>> bands(plan.points.size());
@@ -167,7 +184,7 @@ int run_merge(const CliOptions& cli) {
                                                                     : "is inside the shard directory ") +
                              m.dir + " it merges: choose another --out");
     }
-    OutputDir owned(out, cli.limits.force);  // locked until the merge ends
+    OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the merge ends
     if (!cli.quiet) std::cerr << "merging " << manifests.size() << " shards -> " << out << "\n";
     const int status = run_planned(plan, cli, out, &frames);
     owned.finish();

@@ -36,8 +36,10 @@ int simulate_main(const std::vector<std::string>& args) {
     } catch (const Interrupted&) {
         // Unwound: temporaries removed, the output directory's mark still
         // says running, so merge and the readers refuse it.
-        std::fprintf(stderr, "simulate: interrupted; the output directory is left marked unfinished\n");
-        return kInterruptedExitCode;
+        const int code = interrupted_exit_code();
+        std::fprintf(stderr, "simulate: %s; the output directory is left marked unfinished\n",
+                     code == 128 + kSigTerm ? "terminated (SIGTERM)" : "interrupted");
+        return code;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "simulate: error: %s\n", e.what());
         return 3;

@@ -29,6 +29,8 @@ BreakEvenAxis read_axis(const JsonReader& r) {
     for (std::size_t i = 0; i < ev->size(); ++i) {
         const auto e = (*ev)[i].is_string() ? event_from_name((*ev)[i].get<std::string>()) : std::nullopt;
         if (!e) r.fail("events/" + std::to_string(i), "unknown event " + describe((*ev)[i]) + " (see core/events.h)");
+        if (std::find(a.events.begin(), a.events.end(), *e) != a.events.end())
+            r.fail("events/" + std::to_string(i), std::string(event_name(*e)) + " is listed twice");
         a.events.push_back(*e);
     }
     a.min = r.number("min", std::nullopt, 1e-6, 1e9);
@@ -49,8 +51,38 @@ std::shared_ptr<const Model> load_once(std::map<std::string, std::shared_ptr<con
 // every preset, so warp presets must group rays alike, and a break-even map
 // names one of them and sweeps events it prices.
 void load_presets(RunConfig& c, PresetCache& cache) {
-    for (const std::string& p : c.cost_presets) c.costs.push_back(load_once(cache.costs, p, &load_cost_model));
+    for (std::size_t p = 0; p < c.cost_presets.size(); ++p) {
+        try {
+            c.costs.push_back(load_once(cache.costs, c.cost_presets[p], &load_cost_model));
+        } catch (const InputError& e) {
+            // The preset's error names its file and key; say which of the
+            // config's entries led there (a derived preset's base is not in the config).
+            throw InputError(std::string(e.what()) + " (" + c.file + ": /cost/" + std::to_string(p) + ")");
+        }
+    }
     c.memory = load_once(cache.memory, c.memory_preset, &load_memory_model);
+    // A preset's name keys its results in report.json and names its
+    // cycles_<method>_<name>.npy: two presets of one name (a derived preset
+    // copied without renaming it) would overwrite each other's.
+    for (std::size_t p = 0; p < c.costs.size(); ++p) {
+        const std::string& name = c.costs[p]->name;
+        const std::string where = c.file + ": /cost/" + std::to_string(p) + ": preset \"" + name + "\" (" +
+                                  c.cost_presets[p] + ")";
+        if (name.empty() || name.size() > kMaxFileNamePart)
+            throw InputError(where + ": a preset's name must be 1 to " + std::to_string(kMaxFileNamePart) +
+                             " bytes long (it names output files)");
+        // Checked here, where the registry is known (presets live below the
+        // methods): a misspelt name would label nothing, with exit 0.
+        for (const auto& [method, why] : c.costs[p]->hypothetical)
+            if (!find_method(method))
+                throw InputError(c.cost_presets[p] + ": /hypothetical/" + method + ": not a method (expected one of " +
+                                 method_names_list() + ")");
+        for (std::size_t q = 0; q < p; ++q)
+            if (file_name_part(c.costs[q]->name) == file_name_part(name))
+                throw InputError(where + (c.costs[q]->name == name ? ": has the name of /cost/" : ": names the same files as /cost/") +
+                                 std::to_string(q) + " (" + c.cost_presets[q] +
+                                 "): presets of one run need distinct names; rename one");
+    }
     const CostModel* first_warp = nullptr;
     for (std::size_t p = 0; p < c.costs.size(); ++p) {
         const CostModel& cost = *c.costs[p];
@@ -213,6 +245,23 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
             spec.preset = b.string("preset", std::nullopt);
             spec.x = read_axis(b.child("x"));
             spec.y = read_axis(b.child("y"));
+            // The name is a file name (break_even_<name>.png), checked now, not after tracing.
+            const bool bad_name = spec.name.empty() || spec.name.size() > kMaxFileNamePart ||
+                                  spec.name.front() == '.' || file_name_part(spec.name) != spec.name;
+            if (bad_name)
+                b.fail("name", "\"" + spec.name + "\" cannot name the map's files break_even_<name>.png: use 1 to " +
+                                   std::to_string(kMaxFileNamePart) +
+                                   " letters, digits, '-', '_' or '.', not starting with '.'");
+            for (std::size_t k = 0; k < c.break_even.size(); ++k)
+                if (c.break_even[k].name == spec.name)
+                    b.fail("name", "\"" + spec.name + "\" is also the name of /break_even/" + std::to_string(k) +
+                                       " (each map is written to files of its name)");
+            for (std::size_t k = 0; k < spec.y.events.size(); ++k) {
+                const Event e = spec.y.events[k];
+                if (std::find(spec.x.events.begin(), spec.x.events.end(), e) != spec.x.events.end())
+                    b.fail("y/events/" + std::to_string(k), std::string(event_name(e)) +
+                                                                " is on the x axis too: an event has one cost");
+            }
             spec.cells = static_cast<int>(b.integer("cells", 48, 2, 512));
             if (const nlohmann::json* ms = b.has("methods") ? &b.json()["methods"] : nullptr) {
                 if (!ms->is_array() || ms->size() < 2) b.fail("methods", "expected a list of at least two of the run's methods");
@@ -222,6 +271,8 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
                     const std::string name = (*ms)[k].get<std::string>();
                     if (std::find(c.methods.begin(), c.methods.end(), name) == c.methods.end())
                         b.fail(key, "\"" + name + "\" is not one of the run's methods");
+                    if (std::find(spec.methods.begin(), spec.methods.end(), name) != spec.methods.end())
+                        b.fail(key, "\"" + name + "\" is listed twice");
                     spec.methods.push_back(name);
                 }
             }

@@ -1,6 +1,7 @@
 #include "sim/config/sweep.h"
 
 #include "core/input_error.h"
+#include "sim/util/json_file.h"
 #include "sim/util/json_reader.h"
 
 #include <algorithm>
@@ -24,7 +25,30 @@ std::vector<std::string> split_path(const std::string& dotted) {
     return parts;
 }
 
+// The key as an error message shows it: a 100 KB path would swamp the line.
+std::string shown_key(const std::string& key) {
+    if (key.size() <= 60) return key;
+    std::size_t cut = 57;
+    while (cut > 0 && (static_cast<unsigned char>(key[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+    return key.substr(0, cut) + "... (" + std::to_string(key.size()) + " bytes)";
+}
+
 }  // namespace
+
+void check_set_depth(const std::string& spec, const std::string& origin) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos) return;  // apply_set reports the missing value
+    const std::string key = spec.substr(0, eq);
+    const std::size_t levels = split_path(key).size();
+    const int room = kMaxJsonDepth - static_cast<int>(std::min<std::size_t>(levels, kMaxJsonDepth));
+    const int nesting = json_nesting(std::string_view(spec).substr(eq + 1), room + 1);
+    if (levels > static_cast<std::size_t>(kMaxJsonDepth) || nesting > room)
+        throw InputError(origin + ": --set " + shown_key(key) + ": " +
+                         (levels > static_cast<std::size_t>(kMaxJsonDepth)
+                              ? "key path of " + std::to_string(levels) + " levels"
+                              : "key path and value") +
+                         " nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+}
 
 void set_by_path(nlohmann::json& config, const std::string& dotted_path,
                  const nlohmann::json& value, bool merge) {
@@ -49,7 +73,8 @@ void apply_set(nlohmann::json& config, const std::string& spec, const std::strin
     }
     const auto eq = spec.find('=');
     if (eq == std::string::npos || eq == 0)
-        throw InputError(origin + ": --set " + spec + ": expected key.path=value");
+        throw InputError(origin + ": --set " + shown_key(spec) + ": expected key.path=value");
+    check_set_depth(spec, origin);
     const std::string key = spec.substr(0, eq), text = spec.substr(eq + 1);
     nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
     if (value.is_discarded()) value = text;  // a bare word is a string
@@ -66,6 +91,9 @@ std::vector<std::string> sweep_key_order(const std::string& config_text, const s
         if (eq == std::string::npos) continue;
         const std::vector<std::string> path = split_path(spec.substr(0, eq));
         if (path.empty() || path[0] != "sweep") continue;
+        if (path.size() > static_cast<std::size_t>(kMaxJsonDepth) ||
+            json_nesting(std::string_view(spec).substr(eq + 1)) > kMaxJsonDepth)
+            continue;  // apply_set refuses it, naming the argument
         if (path.size() == 1) {
             order.clear();
             const nlohmann::ordered_json v = nlohmann::ordered_json::parse(spec.substr(eq + 1), nullptr, false);
@@ -91,6 +119,10 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
     for (const auto& [key, values] : sweep.items()) {
         if (!values.is_array() || values.empty())
             r.fail(key, "expected a non-empty list of values, got " + describe(values));
+        // Each level of the key nests the config once more (set_by_path).
+        if (split_path(key).size() > static_cast<std::size_t>(kMaxJsonDepth))
+            throw InputError(file + ": /sweep/" + shown_key(key) + ": key path nested deeper than " +
+                             std::to_string(kMaxJsonDepth) + " levels");
         axes.emplace_back(key, values);
     }
     // First key slowest, in the written order (std::stable_sort keeps the rest alphabetical).

@@ -14,7 +14,15 @@
 namespace rtc {
 
 // Applies "a.b.c=value"; throws InputError naming `origin` on a malformed spec.
+// The key path's levels plus the value's own nesting must stay within
+// kMaxJsonDepth, the limit on config files: a deeper value would overflow
+// the stack when the config is copied (check_set_depth).
 void apply_set(nlohmann::json& config, const std::string& spec, const std::string& origin);
+
+// Throws InputError naming `origin` and the start of the key when `spec`
+// would nest the config deeper than kMaxJsonDepth (its key path's levels plus
+// its value's nesting); one pass over the text, nothing built.
+void check_set_depth(const std::string& spec, const std::string& origin);
 
 // Sets `value` at a dotted path; with `merge`, an object value is merged into
 // an object already there (sweep axes pairing several keys) instead of

@@ -34,6 +34,27 @@ bool order_compositions(std::vector<ComposedCost>& composed) {
     return true;
 }
 
+std::string composition_cycle(const std::vector<ComposedCost>& composed) {
+    // Every sum left over has a term that is another one's target: following
+    // such terms as many steps as there are sums ends inside a cycle.
+    const auto next = [&](const ComposedCost& c) -> const ComposedCost* {
+        for (const auto& [e, w] : c.terms)
+            for (const ComposedCost& o : composed)
+                if (o.target == e) return &o;
+        return nullptr;
+    };
+    if (composed.empty()) return {};
+    const ComposedCost* at = &composed.front();
+    for (std::size_t i = 0; i < composed.size() && at; ++i) at = next(*at);
+    if (!at) return std::string(event_name(composed.front().target));
+    std::string text(event_name(at->target));
+    for (const ComposedCost* c = next(*at); c; c = next(*c)) {
+        text += " -> " + std::string(event_name(c->target));
+        if (c == at || text.size() > 4096) break;
+    }
+    return text;
+}
+
 void CostModel::settle() {
     for (const ComposedCost& c : composed) {
         double v = 0.0;
@@ -107,7 +128,11 @@ std::string resolution_note(const CostModel& m, std::uint64_t pixels) {
     const double ratio = pixels > fitted ? double(pixels) / double(fitted) : double(fitted) / double(pixels);
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.3g", ratio);
-    return m.name + " was fitted at " + std::to_string(m.fitted_on.width) + " x " + std::to_string(m.fitted_on.height) +
+    // A derived preset was not fitted itself: its costs start from its base's fit.
+    const std::string who = m.derived_from.empty() ? m.name + " was fitted at "
+                                                   : m.name + " (derived from " + m.derived_from +
+                                                         ") takes its costs from a fit at ";
+    return who + std::to_string(m.fitted_on.width) + " x " + std::to_string(m.fitted_on.height) +
            " = " + std::to_string(fitted) + " pixels; this run has " + std::to_string(pixels) + " pixels (" + buf + "x " +
            (pixels > fitted ? "more" : "fewer") +
            "): the warp model's answer depends on how much scene an 8 x 4 tile covers "
@@ -195,8 +220,10 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
             m.cycles[i] = e.number("value", std::nullopt, 0.0, 1e9);
         }
     }
-    if (!order_compositions(m.composed))
-        cycles.fail(std::string(event_name(m.composed.front().target)), "sums of costs refer to each other in a cycle");
+    if (!order_compositions(m.composed)) {
+        const std::string cycle = composition_cycle(m.composed);
+        cycles.fail(cycle.substr(0, cycle.find(' ')), "sums of costs refer to each other in a cycle: " + cycle);
+    }
     m.settle();
     for (const ComposedCost& c : m.composed) {  // a written value must be the sum (cost_model_to_json writes it)
         const JsonReader e = cycles.child(kEventNames[static_cast<std::size_t>(c.target)]);
@@ -210,7 +237,10 @@ CostModel parse_cost_model(const std::string& text, const std::string& file) {
 }
 
 CostModel load_cost_model(const std::string& path) {
-    return parse_cost_model(read_text_file(path), path);
+    std::string text = read_text_file(path);
+    CostModel m = parse_cost_model(text, path);
+    m.files = prepend_preset_file(path, std::move(text), m.files);  // a derived preset's bases follow it
+    return m;
 }
 
 std::string cost_model_to_json(const CostModel& m) {

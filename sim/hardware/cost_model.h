@@ -5,6 +5,7 @@
 
 #include "core/sinks.h"
 #include "sim/hardware/execution_model.h"
+#include "sim/hardware/presets/preset_file.h"
 #include "sim/hardware/uncertainty/cost_uncertainty.h"
 
 #include <array>
@@ -65,6 +66,7 @@ struct CostModel {
     std::optional<CostUncertainty> uncertainty;  // fitted presets: the fit's covariance (docs/calibration.md)
     std::vector<ComposedCost> composed;          // costs made of other costs, in order
     std::string derived_from;                    // the base preset's name (a derived preset), else empty
+    PresetFiles files;                           // as read by load_cost_model (null when parsed from text)
     // Methods this machine could run by its features but does not build as
     // modelled (RDNA4 builds oriented boxes over triangles only): method ->
     // why. Still priced; tables and report.json label them hypothetical.
@@ -117,6 +119,10 @@ struct PricedRun {
 // Orders sums so that each comes after the sums among its terms (settle()
 // then computes them in one pass); false when they refer to each other in a cycle.
 [[nodiscard]] bool order_compositions(std::vector<ComposedCost>& composed);
+// After order_compositions failed, with what it left in `composed`: one
+// cycle as "a -> b -> c -> a" (the sums left over also include sums that
+// only depend on a cycle, which an error must not name).
+[[nodiscard]] std::string composition_cycle(const std::vector<ComposedCost>& composed);
 // The hardware features a preset may list; a method needs some of them
 // (MethodInfo::needs, a test checks every method's needs are here).
 inline constexpr const char* kHardwareFeatures[] = {"custom_primitives", "instance_transforms", "lss", "obb_nodes",

@@ -74,7 +74,10 @@ MemoryModel parse_memory_model(const std::string& text, const std::string& file)
 }
 
 MemoryModel load_memory_model(const std::string& path) {
-    return parse_memory_model(read_text_file(path), path);
+    std::string text = read_text_file(path);
+    MemoryModel m = parse_memory_model(text, path);
+    m.files = prepend_preset_file(path, std::move(text), nullptr);
+    return m;
 }
 
 }  // namespace rtc

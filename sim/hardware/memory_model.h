@@ -4,6 +4,7 @@
 #pragma once
 
 #include "intersectors/kinds.h"
+#include "sim/hardware/presets/preset_file.h"
 
 #include <array>
 #include <cstdint>
@@ -14,6 +15,7 @@ namespace rtc {
 
 struct MemoryModel {
     std::string name;
+    PresetFiles files;  // as read by load_memory_model (null when parsed from text)
     std::string description;
     double node_bytes_w2 = 64, node_bytes_w4 = 128, node_bytes_w8 = 80;  // per inner node
     double custom_prim_bytes = 32;  // per custom-primitive AABB in a BLAS leaf

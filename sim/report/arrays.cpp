@@ -4,6 +4,7 @@
 #include "sim/plot/plot_svg.h"
 #include "sim/report/npy.h"
 #include "sim/report/report.h"
+#include "sim/util/paths.h"
 
 #include <filesystem>
 
@@ -12,13 +13,6 @@ namespace rtc {
 namespace {
 
 static_assert(sizeof(RayCounts) == kEventCount * sizeof(std::uint32_t), "RayCounts must be E packed uint32");
-
-std::string file_part(const std::string& name) {
-    std::string s;
-    for (const char c : name)
-        s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
-    return s;
-}
 
 }  // namespace
 
@@ -43,7 +37,7 @@ std::vector<std::string> write_arrays(const RunResult& run, const std::string& d
         std::vector<std::size_t> count_shape = shape;
         count_shape.push_back(kEventCount);
         nlohmann::ordered_json entry;
-        const std::string counts_file = "counts_" + file_part(m.method) + ".npy";
+        const std::string counts_file = "counts_" + file_name_part(m.method) + ".npy";
         write_npy((std::filesystem::path(dir) / counts_file).string(), NpyType::U32, count_shape, counts.data());
         written.push_back(counts_file);
         entry["counts"] = {{"file", counts_file}, {"shape", count_shape}, {"dtype", "uint32"},
@@ -74,7 +68,7 @@ std::vector<std::string> write_arrays(const RunResult& run, const std::string& d
             } else {
                 for (std::size_t i = 0; i < values.size(); ++i) values[i] = price_cycles(counts[i], cost);
             }
-            const std::string file = "cycles_" + file_part(m.method) + "_" + file_part(cost.name) + ".npy";
+            const std::string file = "cycles_" + file_name_part(m.method) + "_" + file_name_part(cost.name) + ".npy";
             write_npy((std::filesystem::path(dir) / file).string(), shape, values);
             written.push_back(file);
             cycles[cost.name] = {{"file", file}, {"shape", shape}, {"dtype", "float64"},

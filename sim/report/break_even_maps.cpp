@@ -6,6 +6,7 @@
 #include "sim/plot/break_even.h"
 #include "sim/report/report.h"
 
+#include "sim/execution/interrupt.h"
 #include "sim/hardware/uncertainty/cost_uncertainty.h"
 #include "sim/plot/plot_svg.h"
 
@@ -156,21 +157,35 @@ BreakEvenGrid break_even_grid(const RunResult& run, const BreakEvenSpec& spec) {
         out.band = interval_90(leads, out.margin);
         return out;
     };
-    for (int iy = 0; iy < g.ny; ++iy)
+    for (int iy = 0; iy < g.ny; ++iy) {
+        throw_if_interrupted();  // a large map with many draws takes minutes
         for (int ix = 0; ix < g.nx; ++ix) {
             const BreakEvenCell c = cell(axis_value(spec.x, ix, g.nx), axis_value(spec.y, iy, g.ny));
             g.winner.push_back(c.winner);
             g.margin.push_back(c.margin);
             if (!draws.empty()) g.band_lo.push_back(c.band[0]), g.band_hi.push_back(c.band[1]);
         }
+    }
     g.at_mark = cell(g.mark_x, g.mark_y);
     return g;
 }
 
+BreakEvenGrids break_even_grids(const RunResult& run) {
+    BreakEvenGrids grids;
+    for (const BreakEvenSpec& spec : run.config.break_even) grids.push_back(break_even_grid(run, spec));
+    return grids;
+}
+
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir) {
+    return write_break_even_maps(run, break_even_grids(run), dir);
+}
+
+std::vector<std::string> write_break_even_maps(const RunResult& run, const BreakEvenGrids& grids,
+                                               const std::string& dir) {
     std::vector<std::string> written;
-    for (const BreakEvenSpec& spec : run.config.break_even) {
-        const BreakEvenGrid g = break_even_grid(run, spec);
+    for (std::size_t i = 0; i < run.config.break_even.size() && i < grids.size(); ++i) {
+        const BreakEvenSpec& spec = run.config.break_even[i];
+        const BreakEvenGrid& g = grids[i];
         const std::string path = (std::filesystem::path(dir) / ("break_even_" + spec.name + ".png")).string();
         BreakEvenOptions options;
         options.scale = 2;  // readable text
@@ -204,10 +219,13 @@ nlohmann::ordered_json break_even_cells_json(const BreakEvenGrid& g) {
     return j;
 }
 
-nlohmann::ordered_json break_even_json(const RunResult& run) {
+nlohmann::ordered_json break_even_json(const RunResult& run) { return break_even_json(run, break_even_grids(run)); }
+
+nlohmann::ordered_json break_even_json(const RunResult& run, const BreakEvenGrids& grids) {
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
-    for (const BreakEvenSpec& spec : run.config.break_even) {
-        const BreakEvenGrid g = break_even_grid(run, spec);
+    for (std::size_t i = 0; i < run.config.break_even.size() && i < grids.size(); ++i) {
+        const BreakEvenSpec& spec = run.config.break_even[i];
+        const BreakEvenGrid& g = grids[i];
         nlohmann::ordered_json j;
         j["name"] = spec.name;
         j["preset"] = spec.preset;

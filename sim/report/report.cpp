@@ -164,7 +164,7 @@ std::vector<std::pair<std::string, std::string>> resolution_notes(const RunResul
     return notes;
 }
 
-nlohmann::ordered_json report_json(const RunResult& run) {
+nlohmann::ordered_json report_json(const RunResult& run, const nlohmann::ordered_json* break_even) {
     nlohmann::ordered_json j;
     j["rtcsim_version"] = kVersion;
     j["name"] = run.config.name;
@@ -229,7 +229,7 @@ nlohmann::ordered_json report_json(const RunResult& run) {
     }
     j["uncertainty"] = why;
     j["memory_overhead_percent"] = overhead;
-    if (!run.config.break_even.empty()) j["break_even"] = break_even_json(run);
+    if (!run.config.break_even.empty()) j["break_even"] = break_even ? *break_even : break_even_json(run);
     j["wall_seconds"] = {{"load_scene", run.load_seconds},
                          {"convert", run.convert_seconds},
                          {"total", run.total_seconds}};

@@ -15,7 +15,11 @@
 
 namespace rtc {
 
-[[nodiscard]] nlohmann::ordered_json report_json(const RunResult& run);
+// `break_even`: the run's break_even_json when already computed (a map's
+// grid costs as much as its cells x draws; compute it once per run), else
+// it is computed here.
+[[nodiscard]] nlohmann::ordered_json report_json(const RunResult& run,
+                                                 const nlohmann::ordered_json* break_even = nullptr);
 
 // Per cost preset of a camera run, the note when the run's pixel count is
 // more than 4x off the one the preset was fitted on (resolution_note):
@@ -40,14 +44,16 @@ namespace rtc {
 
 // A sweep's report.json: its axes and its points (index, label, values, the
 // point's directory relative to the sweep's, and the point's report_json).
+// `break_even`: each run's break_even_json, computed once (report_json).
 [[nodiscard]] nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
-                                                       const std::vector<std::string>& point_dirs);
+                                                       const std::vector<std::string>& point_dirs,
+                                                       const std::vector<nlohmann::ordered_json>* break_even = nullptr);
 
 // Into `dir`: results.csv, summary.csv/.md, speedups.csv/.md, and when the
 // runs are sweep points (non-empty point_dirs, relative to `dir`) the
 // combined report.json.
 void write_sweep_outputs(const std::vector<RunResult>& runs, const std::vector<std::string>& point_dirs,
-                         const std::string& dir);
+                         const std::string& dir, const std::vector<nlohmann::ordered_json>* break_even = nullptr);
 
 // Per method: counts_<method>.npy (H x W x E uint32 per pixel, or R x E per
 // ray for ray lists) and cycles_<method>_<preset>.npy (H x W float64, or R
@@ -65,6 +71,13 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
 // method, its margin and whether the draws leave it in doubt. Returns the
 // files written.
 std::vector<std::string> write_break_even_maps(const RunResult& run, const std::string& dir);
+// Every map's grid of a run (break_even_grid per map of its config), computed
+// once for the pictures and report.json; polls the stop request (Ctrl-C,
+// SIGTERM) between rows of cells.
+using BreakEvenGrids = std::vector<BreakEvenGrid>;
+[[nodiscard]] BreakEvenGrids break_even_grids(const RunResult& run);
+std::vector<std::string> write_break_even_maps(const RunResult& run, const BreakEvenGrids& grids,
+                                               const std::string& dir);
 // A method's cycles as a linear function of the costs, as the maps price
 // it: given a warp preset (whose waves the run recorded), the effective
 // counts of the method's waves at that preset's own costs (exact there,
@@ -82,6 +95,7 @@ std::vector<std::string> write_break_even_maps(const RunResult& run, const std::
 // winner the draws leave in doubt, and the winner and lead interval at the mark.
 [[nodiscard]] nlohmann::ordered_json break_even_cells_json(const BreakEvenGrid& g);
 [[nodiscard]] nlohmann::ordered_json break_even_json(const RunResult& run);
+[[nodiscard]] nlohmann::ordered_json break_even_json(const RunResult& run, const BreakEvenGrids& grids);
 
 // For each numeric sweep axis: speedup of every non-ref method against it, one
 // line per value of the other axes (e.g. speedup vs tilt, one line per N);

@@ -161,7 +161,8 @@ std::string results_csv(const std::vector<RunResult>& runs) {
 }
 
 nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
-                                         const std::vector<std::string>& point_dirs) {
+                                         const std::vector<std::string>& point_dirs,
+                                         const std::vector<nlohmann::ordered_json>* break_even) {
     nlohmann::ordered_json j;
     j["rtcsim_version"] = kVersion;
     j["name"] = runs.empty() ? "" : runs.front().config.name;
@@ -177,14 +178,16 @@ nlohmann::ordered_json sweep_report_json(const std::vector<RunResult>& runs,
         p["label"] = runs[i].sweep_label;
         p["values"] = runs[i].point.values;
         p["dir"] = i < point_dirs.size() ? point_dirs[i] : "";
-        p["report"] = report_json(runs[i]);
+        // Each point's maps were computed once, when it finished: not again
+        // for every later point (that made a sweep's maps quadratic).
+        p["report"] = report_json(runs[i], break_even && i < break_even->size() ? &(*break_even)[i] : nullptr);
         j["points"].push_back(std::move(p));
     }
     return j;
 }
 
 void write_sweep_outputs(const std::vector<RunResult>& runs, const std::vector<std::string>& point_dirs,
-                         const std::string& dir) {
+                         const std::string& dir, const std::vector<nlohmann::ordered_json>* break_even) {
     const auto at = [&](const char* file) { return (std::filesystem::path(dir) / file).string(); };
     write_text_file(at("results.csv"), results_csv(runs));
     const Table t = summary_table(runs);
@@ -195,7 +198,7 @@ void write_sweep_outputs(const std::vector<RunResult>& runs, const std::vector<s
     write_text_file(at("speedups.md"), st.to_markdown());
     // A sweep's points are in sub-directories; the top gets their reports in one file.
     const bool sweep = std::any_of(point_dirs.begin(), point_dirs.end(), [](const std::string& d) { return !d.empty(); });
-    if (sweep) write_text_file(at("report.json"), sweep_report_json(runs, point_dirs).dump(2) + "\n");
+    if (sweep) write_text_file(at("report.json"), sweep_report_json(runs, point_dirs, break_even).dump(2) + "\n");
 }
 
 }  // namespace rtc

@@ -130,6 +130,33 @@ std::optional<double> parse_byte_size(const std::string& text) {
     return x;
 }
 
+namespace {
+
+// The break-even maps' work after tracing: every cell prices each compared
+// method under the preset and under each of its draws (when the preset has
+// a covariance to draw from).
+void add_break_even(const RunConfig& c, WorkEstimate& e) {
+    double largest = -1.0;
+    for (std::size_t i = 0; i < c.break_even.size(); ++i) {
+        const BreakEvenSpec& spec = c.break_even[i];
+        bool drawn = false;
+        for (const auto& cost : c.costs) drawn = drawn || (cost && cost->name == spec.preset && cost->uncertainty);
+        const double models = 1.0 + (drawn ? std::max(c.uncertainty.draws, 0) : 0);
+        const double methods = static_cast<double>(spec.methods.empty() ? c.methods.size() : spec.methods.size());
+        const double cells = static_cast<double>(spec.cells) * spec.cells;
+        const double prices = cells * models * methods;
+        e.break_even += prices;
+        if (prices > largest) {
+            largest = prices;
+            e.break_even_key = "/break_even/" + std::to_string(i) + "/cells";
+            e.break_even_detail = std::to_string(spec.cells) + " x " + std::to_string(spec.cells) + " cells x " +
+                                  count_text(models) + " cost model(s) x " + count_text(methods) + " method(s)";
+        }
+    }
+}
+
+}  // namespace
+
 WorkEstimate estimate_config_work(const RunConfig& c) {
     WorkEstimate e;
     const double methods = static_cast<double>(c.methods.size());
@@ -178,6 +205,7 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
         e.memory_detail = "recording " + count_text(e.rays) + " rays and hits";
     }
     add_method_bytes(c, c.scene.type == SceneType::Hair ? static_cast<double>(c.scene.hair.strands) : 0.0, e);
+    add_break_even(c, e);
     return e;
 }
 
@@ -201,8 +229,14 @@ WorkEstimate estimate_scene_work(const RunConfig& c, const Scene& scene) {
 
 WorkEstimate combine_work(const std::vector<WorkEstimate>& points) {
     WorkEstimate total;
-    double largest_rays = -1.0;
+    double largest_rays = -1.0, largest_break_even = -1.0;
     for (const WorkEstimate& p : points) {
+        total.break_even += p.break_even;
+        if (p.break_even > largest_break_even) {
+            largest_break_even = p.break_even;
+            total.break_even_key = p.break_even_key;
+            total.break_even_detail = p.break_even_detail;
+        }
         total.rays += p.rays;
         if (p.rays > largest_rays) {
             largest_rays = p.rays;
@@ -216,9 +250,13 @@ WorkEstimate combine_work(const std::vector<WorkEstimate>& points) {
             total.memory_detail = p.memory_detail;
         }
     }
-    if (points.size() > 1)
+    if (points.size() > 1) {
         total.rays_detail = count_text(static_cast<double>(points.size())) +
                             " sweep points, the largest " + total.rays_detail;
+        if (total.break_even > 0.0)
+            total.break_even_detail = count_text(static_cast<double>(points.size())) + " sweep points, the largest " +
+                                      total.break_even_detail;
+    }
     return total;
 }
 
@@ -233,6 +271,11 @@ void check_work(const WorkEstimate& e, const WorkLimits& limits, const std::stri
         throw InputError(file + ": " + e.memory_key + ": about " + format_estimate_bytes(e.memory_bytes) +
                          " of memory (" + e.memory_detail + ") exceed --max-memory " +
                          format_estimate_bytes(ceiling) + " (raise it or pass --force to run anyway)");
+    if (e.break_even > limits.max_break_even)
+        throw InputError(file + ": " + e.break_even_key + ": about " + count_text(e.break_even) +
+                         " break-even cell prices (" + e.break_even_detail + ") exceed --max-break-even " +
+                         count_text(limits.max_break_even) + " (fewer cells or uncertainty.draws, raise it, or pass "
+                         "--force to run anyway)");
 }
 
 }  // namespace rtc

@@ -26,6 +26,10 @@ struct WorkLimits {
     double max_rays = 1e10;         // rays traced over every method and sweep point (--max-rays)
     double max_memory = 0.0;        // bytes (--max-memory); 0: 3/4 of physical memory, else 16 GiB
     double max_sweep_points = 1e4;  // sweep points (a sweep larger than this is a typo)
+    // Break-even map cells priced after tracing (--max-break-even): cells x
+    // cost models (the preset and its draws) x methods, over every map and
+    // point. About 5 million a second on one core: 2e8 is about 40 s.
+    double max_break_even = 2e8;
     bool force = false;             // --force: report and go on
 };
 
@@ -40,6 +44,9 @@ struct WorkEstimate {
     std::string rays_detail;    // "800 x 800 pixels x 4 spp x 4 rays per path x 2 methods"
     std::string memory_key;     // JSON path behind the largest memory term
     std::string memory_detail;
+    double break_even = 0.0;    // cell prices of the break-even maps (WorkLimits::max_break_even)
+    std::string break_even_key;  // the largest map's /break_even/<i>/cells
+    std::string break_even_detail;
 };
 
 // From the config alone; primitives of file scenes count 0 here.

@@ -4,9 +4,13 @@
 #include "scenes/loaders/file_bytes.h"
 #include "sim/util/json_file.h"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <functional>
+#include <string_view>
+#include <vector>
 #include <type_traits>
 
 namespace rtc {
@@ -76,12 +80,36 @@ private:
 
 }  // namespace
 
-std::string config_hash(const std::string& text) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+namespace {
+
+constexpr std::uint64_t kFnvBasis = 0xcbf29ce484222325ull;
+
+std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h) {
+    for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+    return h;
+}
+
+std::string hex_of(std::uint64_t h) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
     return hex;
+}
+
+}  // namespace
+
+std::string config_hash(const std::string& text) { return hex_of(fnv1a(text, kFnvBasis)); }
+
+std::string file_hash(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open file (" + std::strerror(errno) + ")");
+    std::vector<char> block(1 << 20);
+    std::uint64_t h = kFnvBasis;
+    while (in) {
+        in.read(block.data(), static_cast<std::streamsize>(block.size()));
+        h = fnv1a(std::string_view(block.data(), static_cast<std::size_t>(in.gcount())), h);
+    }
+    if (in.bad()) throw InputError(path + ": read failed");
+    return hex_of(h);
 }
 
 std::string frame_identity(const std::string& effective_config, const std::string& method, std::size_t point,

@@ -20,6 +20,9 @@ namespace rtc {
                                          std::size_t point, std::uint32_t band, std::uint32_t bands);
 // FNV-1a (64 bits) of `text`, in hex: the config hash of frame_identity and shard.json.
 [[nodiscard]] std::string config_hash(const std::string& text);
+// The same of a file's bytes, read in blocks; throws InputError naming `path`
+// when it cannot be read (shard.json's input hashes).
+[[nodiscard]] std::string file_hash(const std::string& path);
 
 void write_frame_file(const std::string& path, const FrameResult& frame, const std::string& identity);
 

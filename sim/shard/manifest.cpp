@@ -10,7 +10,7 @@ namespace rtc {
 
 namespace {
 
-constexpr const char* kFormat = "rtcsim-shard-2";  // 2: config_hash, frame identities
+constexpr const char* kFormat = "rtcsim-shard-3";  // 2: config_hash, frame identities; 3: inputs
 
 }  // namespace
 
@@ -20,7 +20,7 @@ nlohmann::json manifest_json(const ShardManifest& m) {
         units.push_back({{"point", u.unit.point}, {"band", u.unit.band}, {"bands", u.unit.bands}, {"frames", u.frames}});
     return {{"format", kFormat},      {"build", m.build},   {"shard", m.spec.index}, {"shards", m.spec.count},
             {"config_file", m.config_file}, {"points", m.points}, {"units", units}, {"sets", m.sets},
-            {"config_text", m.config_text}, {"config_hash", m.config_hash}};
+            {"config_text", m.config_text}, {"config_hash", m.config_hash}, {"inputs", m.inputs}};
 }
 
 ShardManifest read_manifest(const std::string& dir) {
@@ -32,7 +32,7 @@ ShardManifest read_manifest(const std::string& dir) {
     const nlohmann::json j = parse_json_text(read_text_file(file), file);
     const JsonReader r(j, file);
     r.allow_only({"format", "build", "shard", "shards", "config_file", "points", "units", "sets", "config_text",
-                  "config_hash"});
+                  "config_hash", "inputs"});
     ShardManifest m;
     m.dir = dir;
     const std::string format = r.string("format", std::nullopt);
@@ -49,6 +49,8 @@ ShardManifest read_manifest(const std::string& dir) {
         if (!j["sets"][i].is_string()) r.fail("sets/" + std::to_string(i), "expected a string");
         m.sets.push_back(j["sets"][i].get<std::string>());
     }
+    const JsonReader inputs = r.child("inputs");
+    for (const auto& [path, hash] : inputs.json().items()) m.inputs[path] = inputs.string(path, std::nullopt);
     if (!j.contains("units") || !j["units"].is_array()) r.fail("units", "expected an array");
     const nlohmann::json& units = j["units"];
     for (std::size_t i = 0; i < units.size(); ++i) {
@@ -65,6 +67,23 @@ ShardManifest read_manifest(const std::string& dir) {
         m.units.push_back(std::move(unit));
     }
     return m;
+}
+
+void check_same_inputs(const std::map<std::string, std::string>& then, const std::string& what,
+                       const std::map<std::string, std::string>& now, const std::string& now_what) {
+    for (const auto& [path, hash] : now) {
+        const auto it = then.find(path);
+        if (it == then.end())
+            throw InputError(what + ": /inputs: " + path + " is read by " + now_what + " but was not by " + what +
+                             " (shards of another plan?)");
+        if (it->second != hash)
+            throw InputError(path + ": content hash " + hash + " in " + now_what + ", " + it->second + " in " + what +
+                             ": the file was edited in between (rerun the shards with one version of it)");
+    }
+    for (const auto& [path, hash] : then)
+        if (!now.count(path))
+            throw InputError(what + ": /inputs: " + path + " was read by " + what + " but is not by " + now_what +
+                             " (shards of another plan?)");
 }
 
 std::vector<ShardManifest> check_shard_set(std::vector<ShardManifest> shards) {
@@ -87,6 +106,7 @@ std::vector<ShardManifest> check_shard_set(std::vector<ShardManifest> shards) {
             s.config_hash != first.config_hash)
             throw InputError(what + ": /config_text: not the config (or --set overrides) of " + first.dir +
                              " (shards of different runs)");
+        check_same_inputs(first.inputs, first.dir + "/shard.json", s.inputs, what);
         if (by_index[s.spec.index])
             throw InputError(what + ": /shard: shard " + std::to_string(s.spec.index) + " given twice (also " +
                              by_index[s.spec.index]->dir + ")");

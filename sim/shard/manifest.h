@@ -23,6 +23,7 @@ struct ShardManifest {
     std::vector<std::string> sets;  // --set overrides, in order
     std::size_t points = 0;       // sweep points of the whole run
     std::string config_hash;      // config_hash() of the effective config (the merge plans the same, or refuses)
+    std::map<std::string, std::string> inputs;  // every data and preset file read -> content hash (sim/config/input_files.h)
     struct Unit {
         ShardUnit unit;
         std::map<std::string, std::string> frames;  // method -> frame file, relative to the shard directory
@@ -35,9 +36,14 @@ struct ShardManifest {
 // Reads DIR/shard.json; errors name the file and key.
 [[nodiscard]] ShardManifest read_manifest(const std::string& dir);
 
+// Throws InputError naming the first input file whose hash differs between `then`
+// (what `what` recorded) and `now`, or that only one of them has.
+void check_same_inputs(const std::map<std::string, std::string>& then, const std::string& what,
+                       const std::map<std::string, std::string>& now, const std::string& now_what);
+
 // Checks that `shards` are the N shards of one run (any order) and returns
 // them ordered by index; throws InputError listing what is missing, repeated
-// or mixed, with the command that reruns a missing shard.
+// or mixed (other configs, other versions of an input file), with the command that reruns a missing shard.
 [[nodiscard]] std::vector<ShardManifest> check_shard_set(std::vector<ShardManifest> shards);
 
 }  // namespace rtc

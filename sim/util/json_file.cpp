@@ -3,6 +3,7 @@
 #include "core/input_error.h"
 #include "scenes/loaders/file_bytes.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -64,6 +65,25 @@ void check_json_depth(std::string_view text, const std::string& file) {
             --depth;
         }
     }
+}
+
+int json_nesting(std::string_view text, int stop) {
+    int depth = 0, deepest = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size() && deepest < stop; ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+    return deepest;
 }
 
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {

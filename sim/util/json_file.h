@@ -19,6 +19,9 @@ namespace rtc {
 // Configs and presets nest fewer than 10 levels.
 inline constexpr int kMaxJsonDepth = 128;
 void check_json_depth(std::string_view text, const std::string& file);
+// How deep `text`'s brackets nest, strings skipped (0 for a scalar); counts
+// up to `stop` and no further, so a hostile text costs one pass.
+[[nodiscard]] int json_nesting(std::string_view text, int stop = kMaxJsonDepth + 1);
 
 // A file written under a temporary name (`path` + ".partial") and renamed to
 // `path` by commit(): a reader never finds a cut file under the real name.

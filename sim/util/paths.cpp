@@ -2,6 +2,7 @@
 
 #include "core/input_error.h"
 
+#include <cctype>
 #include <cstdlib>
 #include <system_error>
 
@@ -66,6 +67,13 @@ bool in_preset_dir(const fs::path& file) {
         if (target.parent_path() == d) return true;
     }
     return false;
+}
+
+std::string file_name_part(const std::string& name) {
+    std::string s;
+    for (const char c : name)
+        s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ? c : '_';
+    return s;
 }
 
 }  // namespace rtc

@@ -33,6 +33,14 @@ namespace rtc {
 [[nodiscard]] std::string resolve_preset(const std::string& value, const std::string& config_file,
                                          const std::string& key);
 
+// A preset or method name as part of an output file name (cycles_<method>_<preset>.npy):
+// letters, digits, '-', '_' and '.' kept, anything else '_'. Configs are
+// checked when planned so that no two of a run's names give one file name.
+[[nodiscard]] std::string file_name_part(const std::string& name);
+// Output names longer than this are refused when planned (file names stay
+// well under the file systems' 255 bytes with their prefixes).
+inline constexpr std::size_t kMaxFileNamePart = 100;
+
 // True when `file` lies in one of preset_dirs() (a shipped or installed preset).
 [[nodiscard]] bool in_preset_dir(const std::filesystem::path& file);
 

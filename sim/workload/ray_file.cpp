@@ -64,26 +64,10 @@ std::uint64_t open_records(std::ifstream& in, const std::string& path, std::size
     return size / record;
 }
 
-void open_for_writing(std::ofstream& out, const std::string& path, const char* what) {
-    errno = 0;
-    out.open(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot create " + what + system_reason());
-}
-
-void write_bytes(std::ofstream& out, const std::string& path, const std::vector<unsigned char>& b,
-                 std::size_t n) {
-    errno = 0;
-    out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(n));
-    if (!out) throw InputError(path + ": write failed" + system_reason());
-}
-
-void close_checked(std::ofstream& out, const std::string& path) {
-    if (!out.is_open()) return;
-    errno = 0;
-    out.flush();
-    const bool ok = static_cast<bool>(out);
-    out.close();
-    if (!ok || !out) throw InputError(path + ": write failed" + system_reason());
+void commit_once(std::unique_ptr<OutputFile>& out) {
+    if (!out) return;
+    std::unique_ptr<OutputFile> file = std::move(out);  // closed even when the commit throws
+    file->commit();
 }
 
 // Decodes and validates one ray record at byte `offset` of `path`.
@@ -162,19 +146,13 @@ std::vector<Ray> read_ray_file(const std::string& path) {
     return rays;
 }
 
-RayFileWriter::RayFileWriter(std::string path) : path_(std::move(path)) {
-    open_for_writing(out_, path_, "ray file");
-}
+RayFileWriter::RayFileWriter(std::string path)
+    : path_(std::move(path)), out_(std::make_unique<OutputFile>(path_)) {}
 
-RayFileWriter::~RayFileWriter() {
-    try {
-        close();
-    } catch (...) {  // destructors must not throw; call close() to see errors
-    }
-}
+RayFileWriter::~RayFileWriter() = default;  // without close(): the partial file is removed
 
 void RayFileWriter::append(std::span<const Ray> rays) {
-    if (!out_.is_open()) throw InputError(path_ + ": ray file already closed");
+    if (!out_) throw InputError(path_ + ": ray file already closed");
     if (buffer_.size() < rays.size() * kRayRecordBytes) buffer_.resize(rays.size() * kRayRecordBytes);
     unsigned char* p = buffer_.data();
     for (const Ray& r : rays) {
@@ -185,11 +163,11 @@ void RayFileWriter::append(std::span<const Ray> rays) {
             p += 4;
         }
     }
-    write_bytes(out_, path_, buffer_, rays.size() * kRayRecordBytes);
+    out_->write(buffer_.data(), rays.size() * kRayRecordBytes);
     count_ += rays.size();
 }
 
-void RayFileWriter::close() { close_checked(out_, path_); }
+void RayFileWriter::close() { commit_once(out_); }
 
 void write_ray_file(const std::string& path, std::span<const Ray> rays) {
     RayFileWriter w(path);
@@ -199,16 +177,10 @@ void write_ray_file(const std::string& path, std::span<const Ray> rays) {
 
 // ---- hits ----------------------------------------------------------------
 
-HitFileWriter::HitFileWriter(std::string path) : path_(std::move(path)) {
-    open_for_writing(out_, path_, "hit file");
-}
+HitFileWriter::HitFileWriter(std::string path)
+    : path_(std::move(path)), out_(std::make_unique<OutputFile>(path_)) {}
 
-HitFileWriter::~HitFileWriter() {
-    try {
-        close();
-    } catch (...) {  // destructors must not throw; call close() to see errors
-    }
-}
+HitFileWriter::~HitFileWriter() = default;  // without close(): the partial file is removed
 
 void HitFileWriter::append_one(const FileHit& h) {
     const std::size_t at = buffer_.size();
@@ -219,26 +191,26 @@ void HitFileWriter::append_one(const FileHit& h) {
 }
 
 void HitFileWriter::flush_buffer() {
-    write_bytes(out_, path_, buffer_, buffer_.size());
+    out_->write(buffer_.data(), buffer_.size());
     count_ += buffer_.size() / kHitRecordBytes;
     buffer_.clear();  // keeps the capacity
 }
 
 void HitFileWriter::append(std::span<const FileHit> hits) {
-    if (!out_.is_open()) throw InputError(path_ + ": hit file already closed");
+    if (!out_) throw InputError(path_ + ": hit file already closed");
     buffer_.reserve(hits.size() * kHitRecordBytes);
     for (const FileHit& h : hits) append_one(h);
     flush_buffer();
 }
 
 void HitFileWriter::append(std::span<const TraceHit> hits) {
-    if (!out_.is_open()) throw InputError(path_ + ": hit file already closed");
+    if (!out_) throw InputError(path_ + ": hit file already closed");
     buffer_.reserve(hits.size() * kHitRecordBytes);
     for (const TraceHit& h : hits) append_one(to_file_hit(h));
     flush_buffer();
 }
 
-void HitFileWriter::close() { close_checked(out_, path_); }
+void HitFileWriter::close() { commit_once(out_); }
 
 void write_hit_file(const std::string& path, std::span<const FileHit> hits) {
     HitFileWriter w(path);

@@ -15,9 +15,11 @@
 
 #include "core/ray.h"
 #include "sim/hardware/trace_hit.h"
+#include "sim/util/json_file.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <fstream>
 #include <span>
 #include <string>
@@ -50,9 +52,11 @@ private:
 // Reads and validates a whole ray file.
 [[nodiscard]] std::vector<Ray> read_ray_file(const std::string& path);
 
-// Streaming writer: create (truncate) once, append batches. Errors are
-// InputErrors naming the path. close() flushes and reports write errors; the
-// destructor closes silently.
+// Streaming writer: append batches, then close(). The file is written under
+// a temporary name (OutputFile) and renamed to `path` by close(): destroyed
+// without close() (a failed or interrupted run) it leaves nothing, so a cut
+// file is never found under the real name and replayed as a whole one.
+// Errors are InputErrors naming the path.
 class RayFileWriter {
 public:
     explicit RayFileWriter(std::string path);
@@ -65,7 +69,7 @@ public:
 
 private:
     std::string path_;
-    std::ofstream out_;
+    std::unique_ptr<OutputFile> out_;  // null once closed
     std::uint64_t count_ = 0;
     std::vector<unsigned char> buffer_;
 };
@@ -88,6 +92,7 @@ struct FileHit {
     return {h.t, h.prim, h.geom};
 }
 
+// As RayFileWriter: nothing under `path` unless close() was called.
 class HitFileWriter {
 public:
     explicit HitFileWriter(std::string path);
@@ -103,7 +108,7 @@ private:
     void append_one(const FileHit& h);
     void flush_buffer();
     std::string path_;
-    std::ofstream out_;
+    std::unique_ptr<OutputFile> out_;  // null once closed
     std::uint64_t count_ = 0;
     std::vector<unsigned char> buffer_;
 };

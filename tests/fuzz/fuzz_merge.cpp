@@ -1,19 +1,24 @@
 // libFuzzer harness: what `simulate merge` reads (sim/app/shard_runs.cpp).
 // Input starting with '{' is a shard.json: read from a scratch directory,
-// checked as a one-shard set, and its config_text planned with its --set
-// overrides (small ceilings) against its points and config_hash, as the
-// merge does before reading frames. Anything else is a frame file after one
+// checked as a one-shard set, its --set overrides' depth checked, its
+// config_text planned with them (small ceilings) against its points and
+// config_hash, and its `inputs` (file -> content hash) against the files as
+// they are now, as the merge does before reading frames (issue 56: edited
+// inputs; the seeds name real presets with right and wrong hashes). Anything else is a frame file after one
 // line giving the frame shape and the identity the merge expects (so the
 // fuzzer can get past those checks; the seeds carry what their file
 // records), read and merged as a one-band frame.
 #include "fuzz_common.h"
 #include "sim/app/run_all.h"
+#include "sim/config/input_files.h"
+#include "sim/config/sweep.h"
 #include "sim/shard/frame_file.h"
 #include "sim/shard/manifest.h"
 
 #include <unistd.h>
 
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -41,8 +46,13 @@ void merge_manifest(const std::uint8_t* data, std::size_t size) {
     limits.max_rays = 1e6;
     limits.max_memory = 16.0 * 1024 * 1024;
     limits.max_sweep_points = 16;
+    for (std::size_t i = 0; i < m.sets.size(); ++i) rtc::check_set_depth(m.sets[i], "shard.json: /sets");
     const rtc::RunPlan plan = rtc::plan_config_text(m.config_file, m.config_text, m.sets, limits);
     (void)(plan.points.size() == m.points && m.config_hash == rtc::config_hash(plan.config.dump()));
+    std::map<std::string, std::string> now;
+    for (const rtc::InputFile& f : rtc::input_files(plan.parsed))
+        now[f.path] = f.text ? rtc::config_hash(*f.text) : rtc::file_hash(f.path);
+    rtc::check_same_inputs(m.inputs, "shard.json", now, "the files as they are now");
 }
 
 void merge_frame(const std::uint8_t* data, std::size_t size) {

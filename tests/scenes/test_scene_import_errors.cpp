@@ -188,6 +188,42 @@ TEST_CASE("mesh import errors: PLY headers and sizes, glTF, formats") {
            "cannot tell the mesh format from the extension \".stl\"");
 }
 
+TEST_CASE("mesh import errors: glTF node hierarchies too deep, cyclic or shared (issue 56)") {
+    // quad.gltf with its one node at the bottom of a chain of `levels` nodes
+    // (node i's child is i + 1), or with `extra` spliced into the nodes.
+    nlohmann::json quad = parse_json_text(read_text_file((kImportFixtures / "gltf/quad.gltf").string()), "quad");
+    const auto chain = [&](int levels) {
+        nlohmann::json j = quad;
+        const nlohmann::json leaf = j["nodes"][0];
+        j["nodes"] = nlohmann::json::array();
+        for (int i = 0; i + 1 < levels; ++i) j["nodes"].push_back({{"children", {i + 1}}});
+        j["nodes"].push_back(leaf);
+        return j.dump();
+    };
+    // A million levels overflowed assimp's recursive node walk (SEGV).
+    expect(error_of([&] { (void)load_mesh(scratch_file("deep.gltf", chain(1000000))); }), "deep.gltf",
+           "JSON key /nodes/255/children: node hierarchy nested deeper than 256 levels");
+    expect(error_of([&] { (void)load_mesh(scratch_file("deep257.gltf", chain(257))); }), "deep257.gltf",
+           "nested deeper than 256 levels");
+    CHECK(load_mesh(scratch_file("deep256.gltf", chain(256))).triangles.size() == 2);  // the limit itself loads
+    const auto with_nodes = [&](const std::string& name, const nlohmann::json& nodes) {
+        nlohmann::json j = quad;
+        j["nodes"] = nodes;
+        return scratch_file(name, j.dump());
+    };
+    const nlohmann::json mesh = quad["nodes"][0];
+    expect(error_of([&] { (void)load_mesh(with_nodes("cycle.gltf", {{{"children", {1}}}, {{"children", {2}}},
+                                                                     {{"children", {0}}}, mesh})); }),
+           "cycle.gltf", "the hierarchy has a cycle");
+    expect(error_of([&] { (void)load_mesh(with_nodes("self.gltf", {{{"children", {0}}}, mesh})); }), "self.gltf",
+           "JSON key /nodes/0/children/0: a node cannot be its own child");
+    expect(error_of([&] { (void)load_mesh(with_nodes("shared.gltf", {{{"children", {2}}}, {{"children", {2}}},
+                                                                      mesh})); }),
+           "shared.gltf", "JSON key /nodes/1/children/0: node 2 is already a child of node 0");
+    expect(error_of([&] { (void)load_mesh(with_nodes("far_child.gltf", {{{"children", {9}}}, mesh})); }),
+           "far_child.gltf", "JSON key /nodes/0/children/0: names nodes 9, the file has 2");
+}
+
 TEST_CASE("scene config: mesh and curve formats of the new importers") {
     const std::string config = (kImportFixtures / "run.json").string();
     auto load = [&](const nlohmann::json& j) { return load_scene(JsonReader(j, config, "/scene")); };

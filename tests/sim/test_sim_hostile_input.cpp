@@ -150,4 +150,26 @@ TEST_CASE("hostile config: a --set that is not UTF-8 (found by fuzz_config)") {
     check_starts(error_of(kTiny, {"name=\xfe\xff"}), kTiny + ": --set: ", "UTF-8");
 }
 
+TEST_CASE("hostile config: --set key paths and values of any depth exit 2 naming the argument (issue 56)") {
+    // 60,000 key levels or a value nested 65,500 deep overflowed the stack
+    // (SIGSEGV) when the config was copied; the 128-level limit covered files.
+    std::string key = "description";
+    for (int i = 0; i < 60000; ++i) key += ".a";
+    check_starts(error_of(kTiny, {key + "=1"}), kTiny + ": --set description.a.a", "deeper than 128 levels");
+    CHECK(error_of(kTiny, {key + "=1"}).size() < 200);  // the key is shortened, not echoed whole
+    const std::string deep_value = std::string(65500, '[') + std::string(65500, ']');
+    check_starts(error_of(kTiny, {"description=" + deep_value}), kTiny + ": --set description: ",
+                 "deeper than 128 levels");
+    // The limit counts the key's levels and the value's together.
+    std::string half = "description";
+    for (int i = 0; i < 100; ++i) half += ".a";
+    check_starts(error_of(kTiny, {half + "=" + std::string(40, '[') + std::string(40, ']')}),
+                 kTiny + ": --set description.a", "deeper than 128 levels");
+    // A sweep key is a key path too.
+    check_starts(error_of(kTiny, {"sweep={\"" + key + "\": [1]}"}), kTiny + ": /sweep/description.a.a",
+                 "deeper than 128 levels");
+    // Within the limit it is an ordinary (here unknown) key.
+    check_starts(error_of(kTiny, {"description.a.a=1"}), kTiny + ": /description");
+}
+
 }  // namespace RTCSIM_TEST_FILE

@@ -151,7 +151,8 @@ TEST_CASE("workload hit file: round trip and validation") {
         w.append(std::span<const TraceHit>(hits));
         w.append(std::span<const FileHit>(std::vector<FileHit>{{3.0f, 7, GeometryId::Triangles}}));
         CHECK(w.hits_written() == 4);
-    }  // the destructor closes
+        w.close();
+    }
     CHECK(std::filesystem::file_size(path) == 4 * kHitRecordBytes);
     const std::vector<FileHit> back = read_hit_file(path);
     REQUIRE(back.size() == 4);
@@ -184,6 +185,24 @@ TEST_CASE("workload hit file: round trip and validation") {
     write_floats(path, {1.0f, 2.0f});  // 8 bytes
     CHECK_THROWS_WITH_AS((void)read_hit_file(path),
                          doctest::Contains("not a multiple of 12"), InputError);
+}
+
+TEST_CASE("workload ray file: a writer not closed (a failed run) leaves no file under the real name") {
+    // Issue 56: a failed run's cut rays.bin stayed and replayed with exit 0.
+    const std::string rays = temp_path("cut.rays"), hits = temp_path("cut.hits");
+    std::filesystem::remove(rays);
+    std::filesystem::remove(hits);
+    {
+        RayFileWriter w(rays);
+        w.append(std::vector<Ray>(3, Ray{Vec3(0.0f), 0.0f, Vec3(0.0f, 0.0f, 1.0f), 1.0f}));
+        HitFileWriter h(hits);
+        h.append(std::span<const FileHit>(std::vector<FileHit>(2)));
+    }  // destroyed as by an exception, without close()
+    CHECK_FALSE(std::filesystem::exists(rays));
+    CHECK_FALSE(std::filesystem::exists(rays + ".partial"));
+    CHECK_FALSE(std::filesystem::exists(hits));
+    CHECK_FALSE(std::filesystem::exists(hits + ".partial"));
+    CHECK_THROWS_AS((void)read_ray_file(rays), InputError);
 }
 
 }  // namespace RTCSIM_TEST_FILE

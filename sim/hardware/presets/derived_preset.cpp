@@ -1,19 +1,22 @@
 #include "sim/hardware/presets/derived_preset.h"
 
+#include "core/input_error.h"
 #include "sim/util/json_reader.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace rtc {
 
 namespace {
 
-// Derivation depth of the presets being loaded on this thread (a preset
-// naming itself, directly or through others, would recurse forever).
-thread_local int g_depth = 0;
-constexpr int kMaxDepth = 8;
+// The derived presets being loaded on this thread, outermost first: a
+// preset naming itself, directly or through others, would recurse forever.
+thread_local std::vector<std::string> g_chain;
+constexpr std::size_t kMaxDepth = 8;
 
 std::string number_text(double v) {
     char buf[32];
@@ -55,16 +58,32 @@ CostModel parse_derived_preset(const JsonReader& r) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(base_file, ec))
         r.fail("derived_from", "no preset file " + base_file + " (the base is named relative to this preset's folder)");
-    if (g_depth >= kMaxDepth)
-        r.fail("derived_from", "presets derive from each other more than " + std::to_string(kMaxDepth) +
-                                   " deep (a cycle?)");
-    struct Depth {  // one level deeper while the base loads, also when it throws
-        Depth() { ++g_depth; }
-        ~Depth() { --g_depth; }
+    const std::string here_file = std::filesystem::weakly_canonical(r.file(), ec).string();
+    const std::string base_canonical = std::filesystem::weakly_canonical(base_file, ec).string();
+    const auto seen = std::find(g_chain.begin(), g_chain.end(), base_canonical);
+    if (seen != g_chain.end() || base_canonical == here_file) {
+        std::string cycle;
+        for (auto it = seen; it != g_chain.end(); ++it) cycle += std::filesystem::path(*it).filename().string() + " -> ";
+        cycle += std::filesystem::path(here_file).filename().string() + " -> " +
+                 std::filesystem::path(base_canonical).filename().string();
+        r.fail("derived_from", "presets derive from each other in a cycle: " + cycle);
+    }
+    if (g_chain.size() >= kMaxDepth)
+        r.fail("derived_from", "presets derive from each other more than " + std::to_string(kMaxDepth) + " deep");
+    struct Depth {  // this preset is on the chain while its base loads, also when it throws
+        explicit Depth(const std::string& file) { g_chain.push_back(file); }
+        ~Depth() { g_chain.pop_back(); }
     };
     CostModel m = [&] {
-        const Depth deeper;
-        return load_cost_model(base_file);
+        const Depth deeper(here_file);
+        try {
+            return load_cost_model(base_file);
+        } catch (const InputError& e) {
+            // The base's own error (file and key) names the derived preset
+            // too: the config names only that one.
+            if (g_chain.size() > 1) throw;  // an inner derived preset already said it
+            throw InputError(std::string(e.what()) + " (the base of " + r.file() + ")");
+        }
     }();
 
     m.derived_from = m.name;
@@ -121,7 +140,7 @@ CostModel parse_derived_preset(const JsonReader& r) {
         }
     }
     if (!order_compositions(m.composed))
-        r.fail("deltas", "sums of costs refer to each other in a cycle (" + std::string(event_name(m.composed.front().target)) + ", ...)");
+        r.fail("deltas", "sums of costs refer to each other in a cycle: " + composition_cycle(m.composed));
     m.settle();
     return m;
 }
