@@ -15,6 +15,22 @@ std::string config_relative_path(const std::string& path, const std::string& con
     return (fs::path(config_file).parent_path() / p).lexically_normal().string();
 }
 
+bool is_data_path(const std::string& path) { return path.rfind(kDataPrefix, 0) == 0; }
+
+fs::path data_root() {
+    if (const char* env = std::getenv("RTCSIM_DATA"); env && *env) return fs::path(env).lexically_normal();
+#ifdef RTCSIM_SOURCE_DATA_DIR
+    return RTCSIM_SOURCE_DATA_DIR;
+#else
+    return "data";
+#endif
+}
+
+std::string config_data_path(const std::string& path, const std::string& config_file) {
+    if (!is_data_path(path)) return config_relative_path(path, config_file);
+    return (data_root() / path.substr(std::string(kDataPrefix).size())).lexically_normal().string();
+}
+
 std::vector<fs::path> preset_dirs() {
     std::vector<fs::path> dirs;
     if (const char* env = std::getenv("RTCSIM_PRESET_DIR"); env && *env) dirs.emplace_back(env);

@@ -1,8 +1,10 @@
-// Paths named in configs, and where hardware presets are found.
+// Paths named in configs, the data root, and where hardware presets are found.
 //
 // A relative path in a config resolves against the directory of the config
 // file that names it (never the working directory), so a config runs from
-// anywhere. A preset value without a '/' and without ".json" is a preset
+// anywhere. A path starting "data:" names a file under the data root instead
+// (the public models scripts/fetch-data installs, docs/data.md), so the
+// shipped configs do not depend on where the data lies. A preset value without a '/' and without ".json" is a preset
 // *name*: `"cost": ["turing-calibrated"]` is <preset dir>/turing-calibrated.json,
 // with the preset directories searched in order (preset_dirs()).
 #pragma once
@@ -16,6 +18,20 @@ namespace rtc {
 // `path` as given when absolute, else relative to the directory of
 // `config_file` (the working directory when it has none), lexically normal.
 [[nodiscard]] std::string config_relative_path(const std::string& path, const std::string& config_file);
+
+// The prefix of a path under the data root: "data:hair/sintel_hair_16pts.tfx".
+inline constexpr const char* kDataPrefix = "data:";
+[[nodiscard]] bool is_data_path(const std::string& path);
+
+// The one place the data root is decided, the first given of
+//   1. $RTCSIM_DATA, if set and not empty (`simulate --data DIR` sets it for
+//      its own run and the processes it starts);
+//   2. the source tree's data/, compiled in (where scripts/fetch-data puts it).
+[[nodiscard]] std::filesystem::path data_root();
+
+// A data file's path from a config: "data:REL" is data_root()/REL, anything
+// else config_relative_path(). Lexically normal.
+[[nodiscard]] std::string config_data_path(const std::string& path, const std::string& config_file);
 
 // Where presets named by name are looked for, in order, existing or not:
 //   1. $RTCSIM_PRESET_DIR, if set and not empty;
