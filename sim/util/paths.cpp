@@ -2,6 +2,8 @@
 
 #include "core/input_error.h"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <system_error>
 
@@ -43,6 +45,14 @@ std::vector<fs::path> preset_dirs() {
 #ifdef RTCSIM_SOURCE_PRESET_DIR
     dirs.emplace_back(RTCSIM_SOURCE_PRESET_DIR);
 #endif
+    // The file this function was loaded from: the program itself, or the
+    // Python module, which a pip install puts beside its presets, wherever
+    // the source tree went.
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&preset_dirs), &info) != 0 && info.dli_fname != nullptr) {
+        const fs::path object = fs::path(info.dli_fname);
+        if (object != exe && object.is_absolute()) dirs.push_back((object.parent_path() / "configs" / "hw").lexically_normal());
+    }
     return dirs;
 }
 

@@ -37,7 +37,9 @@ inline constexpr const char* kDataPrefix = "data:";
 //   1. $RTCSIM_PRESET_DIR, if set and not empty;
 //   2. <directory of the running program>/../share/rtcsim/hw (a relocated install);
 //   3. the install's preset directory compiled in (CMAKE_INSTALL_FULL_DATADIR/rtcsim/hw);
-//   4. the source tree's configs/hw compiled in (so a build tree works).
+//   4. the source tree's configs/hw compiled in (so a build tree works);
+//   5. configs/hw beside the shared object holding this code, when it is one
+//      (the Python module installed by pip carries the presets so: rtcsim/).
 [[nodiscard]] std::vector<std::filesystem::path> preset_dirs();
 
 // True when `value` names a preset by name rather than by path.
