@@ -38,3 +38,9 @@ V/bin/python -m rtcsim quickstart.json --out out --quiet --threads 2 \
   --set workload.width=48 --set workload.height=48 --set workload.spp=1 --set output.images=false
 test -s out/report.json
 echo "ok: python -m rtcsim wrote out/report.json"
+# The installed package's own presets are searched, wherever the source went.
+err=$(V/bin/python -m rtcsim quickstart.json --estimate --set 'cost=["no-such-preset"]' 2>&1 || true)
+case "$err" in
+  *"$work/V/lib/"*"/site-packages/rtcsim/configs/hw"*) echo "ok: presets searched in the installed package" ;;
+  *) echo "the installed package's presets are not searched: $err"; exit 1 ;;
+esac
