@@ -1,5 +1,6 @@
 """scripts/make_reproduction.py on small reproduction runs: the tables of
-docs/reproduction.md from the runs' reports, and its figures."""
+docs/reproduction.md from the runs' reports, and its figures; and the
+scorecard scripts/reproduce ends with (scripts/reproduction_scorecard.py)."""
 import os
 import re
 import subprocess
@@ -59,6 +60,26 @@ def test_make_reproduction(simulate, tmp_path):
         "fig3_n1000_r0.002_45deg_ratio.png", "fig3_speedup_vs_tilt.svg", "speedup_vs_area_ratio.svg"]
     svg = (images / "speedup_vs_area_ratio.svg").read_text()
     assert "synthetic bundles" in svg and "hair models" in svg
+
+    # The scorecard scripts/reproduce ends with, on the same runs: the
+    # synthetic cells counted against the paper, what is missing, the charts.
+    out = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "reproduction_scorecard.py"), str(runs),
+                          "--images", str(images), "--mode", "quick"],
+                         capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
+    assert out.returncode == 0, out.stderr
+    card = out.stdout
+    assert card == (runs / "scorecard.md").read_text()
+    within = sum(abs(r.speedup("obb", "turing-calibrated") / paper - 1) <= 0.10
+                 for tilt, row in PAPER.items() for (n, paper) in zip((1, 10, 100, 1000), row)
+                 for r in [fig3[(n, tilt)]])
+    assert f"| synthetic table (the fit's own data) | {within} of 16 |" in card
+    assert "- Table 1: no runs in curly/." in card and "Quick mode:" in card
+    assert (images / "fig3_paper_vs_simulated.svg").stat().st_size > 0
+    assert not (images / "table1_paper_vs_simulated.svg").exists()  # no Table 1 runs, no chart
+
+
+PAPER = {0: [1.05, 1.03, 1.04, 1.04], 15: [1.16, 1.16, 2.01, 3.83],  # the paper's synthetic table
+         30: [1.10, 1.21, 1.91, 3.32], 45: [1.12, 1.22, 1.90, 3.20]}
 
 
 def test_make_reproduction_update(simulate, tmp_path):

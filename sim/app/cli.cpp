@@ -49,6 +49,9 @@ usage:
 options (--opt value or --opt=value):
   --out DIR             output directory (default: out/<config name>/); it must be
                         missing or empty, see --force
+  --data DIR            the data root that "data:..." paths in configs name
+                        (default: $RTCSIM_DATA, else the repository's data/,
+                        filled by scripts/fetch-data; docs/data.md)
   --threads N           worker threads (default and 0: all cores; results do not depend on it)
   --set key.path=value  override any config key by its path, e.g.
                         --set workload.spp=1 --set scene.tilt_deg=30
@@ -74,7 +77,8 @@ options (--opt value or --opt=value):
   --estimate            print each shard's estimated work and exit (with --shards N)
 
 paths and presets:
-  Every path in a config is relative to that config file. Presets are named by
+  Every path in a config is relative to that config file, except "data:..."
+  paths, which are relative to the data root (--data). Presets are named by
   name ("cost": ["turing-calibrated"], "memory": "memory-optix7") and found in
   $RTCSIM_PRESET_DIR, else <bin>/../share/rtcsim/hw (installed), else the
   install prefix's share/rtcsim/hw, else the source tree's configs/hw; or by
@@ -140,7 +144,7 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     o.command_line.insert(o.command_line.end(), args.begin(), args.end());
     CLI::App app{"simulate"};
     app.set_help_flag();  // cli_help() is the help text
-    std::string out, threads, max_rays, max_memory, max_break_even, shard, shards;
+    std::string out, data, threads, max_rays, max_memory, max_break_even, shard, shards;
     std::vector<std::string> positional;
     app.add_flag("-h,--help", o.help);
     app.add_flag("--version", o.version);
@@ -149,9 +153,9 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     app.add_flag("--force", o.limits.force);
     app.add_flag("--estimate", o.estimate);
     // Given twice, the last value wins (as with --set, later overrides earlier).
-    for (const auto& [name, value] : {std::pair{"--out", &out}, {"--threads", &threads}, {"--max-rays", &max_rays},
-                                      {"--max-memory", &max_memory}, {"--max-break-even", &max_break_even},
-                                      {"--shard", &shard}, {"--shards", &shards}})
+    for (const auto& [name, value] : {std::pair{"--out", &out}, {"--data", &data}, {"--threads", &threads},
+                                      {"--max-rays", &max_rays}, {"--max-memory", &max_memory},
+                                      {"--max-break-even", &max_break_even}, {"--shard", &shard}, {"--shards", &shards}})
         app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     // One value per --set (a vector option would swallow the config name).
     app.add_option("--set", o.sets)
@@ -170,6 +174,11 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
         require_value(out, "--out");
         if (out.empty()) throw InputError("simulate: --out needs a value (see --help)");
         o.out = out;
+    }
+    if (given("--data")) {
+        require_value(data, "--data");
+        if (data.empty()) throw InputError("simulate: --data needs a value (see --help)");
+        o.data = data;
     }
     for (const std::string& s : o.sets) require_value(s, "--set");
     if (given("--threads")) {

@@ -16,6 +16,7 @@ struct CliOptions {
     bool calibrate = false;          // `simulate calibrate CONFIG.json`
     std::string config;
     std::optional<std::string> out;  // default out/<config name>/
+    std::optional<std::string> data; // --data DIR: the data root ("data:" paths, sim/util/paths.h)
     unsigned threads = 0;            // 0: all cores
     std::vector<std::string> sets;   // key.path=value overrides, in order
     bool quiet = false;

@@ -1,6 +1,8 @@
 #include "sim/app/provenance.h"
 
 #include "sim/config/config_json.h"
+#include "sim/util/json_file.h"
+#include "sim/util/paths.h"
 #include "sim/util/process_memory.h"
 #include "sim/util/version.h"
 
@@ -62,6 +64,7 @@ ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<
     if (!command_line.empty()) j["command_line"] = command_line;
     j["huge_pages"] = huge_pages_summary();  // RTCSIM_HUGE_PAGES and, under auto, the probe's choice
     j["config_file"] = run.config.file;
+    j["data_root"] = data_root().string();  // what "data:..." paths of the config meant
     j["repriced"] = run.repriced;  // priced from the previous sweep point's trace
     j["effective_config"] = run_config_to_json(run.config, run.point.config);
     ojson cost = ojson::array();

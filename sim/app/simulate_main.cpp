@@ -9,10 +9,27 @@
 #include "sim/util/version.h"
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <exception>
 #include <iostream>
 
 namespace rtc {
+
+namespace {
+
+// --data DIR is RTCSIM_DATA=DIR for this process, so the data root stays
+// decided in one place (data_root()). Absolute, as the option's value meant
+// the working directory's DIR.
+void use_data_root(const std::string& dir) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec))
+        throw InputError("simulate: --data " + dir + ": no such directory (scripts/fetch-data fills the repository's data/)");
+    const std::filesystem::path abs = std::filesystem::absolute(dir, ec).lexically_normal();
+    ::setenv("RTCSIM_DATA", (ec ? std::filesystem::path(dir) : abs).c_str(), 1);
+}
+
+}  // namespace
 
 int simulate_main(const std::vector<std::string>& args) {
     try {
@@ -26,6 +43,7 @@ int simulate_main(const std::vector<std::string>& args) {
                       << (git_dirty() ? ", uncommitted changes" : "") << ")\n";
             return 0;
         }
+        if (cli.data) use_data_root(*cli.data);
         if (cli.merge) return run_merge(cli);
         if (cli.estimate) return print_shard_estimates(cli);
         if (cli.shard) return run_shard(cli);

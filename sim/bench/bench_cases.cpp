@@ -55,7 +55,7 @@ std::vector<BenchCase> standard_cases(const std::string& data_dir) {
                      "radius 0.0001 m; 800 x 800 primary rays from (-0.007, 1.535, 0.55) at the hair's centre",
                      {}, ""};
     if (!std::filesystem::exists(tfx) || !std::filesystem::exists(obj)) {
-        sintel.missing_data = "needs " + tfx + " and " + obj + " (set --data DIR)";
+        sintel.missing_data = "needs " + tfx + " and " + obj + " (run scripts/fetch-data, or set --data DIR)";
     } else {
         const json scene = {{"type", "file"},
                             {"curves", {{"path", tfx}, {"radius", 0.0001}}},

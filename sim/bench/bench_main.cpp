@@ -42,7 +42,8 @@ constexpr const char* kHelp =
     "  --threads LIST thread counts to time, e.g. 1,2 (default: 1 and all cores); one\n"
     "                 number N > 1 times 1 and N; scaling is against the first count\n"
     "  --repeat K     best of K traces per figure (default 3)\n"
-    "  --data DIR     shared data directory for case 4 (default ../shared/data)\n"
+    "  --data DIR     the data root for case 4 (default: $RTCSIM_DATA, else the\n"
+    "                 repository's data/, filled by scripts/fetch-data)\n"
     "  --json FILE    also write the figures as JSON (not with --embree or --warp-price)\n"
     "  --compare A.json B.json  print B / A ratios of two --json files (rates, builds)\n"
     "                 and whether their event totals are identical; traces nothing\n"
@@ -66,7 +67,7 @@ struct Cli {
     bool embree = false;  // --embree
     bool warp_price = false;  // --warp-price
     BenchOptions bench;
-    std::string data = "../shared/data";
+    std::string data = data_root().string();  // as simulate's "data:" paths
     std::string json_file;
     int pixels = 0;  // 0: each case's own resolution
     std::set<std::string> methods{"ref", "obb"};

@@ -29,10 +29,13 @@ DataPath data_path(const JsonReader& block, std::string_view key) {
     if (given.empty()) block.fail(key, "empty path");
     DataPath p;
     p.key = block.key_path(key);
-    p.shown = config_relative_path(given, block.file());
+    p.shown = config_data_path(given, block.file());
     std::error_code ec;  // a symlink loop or an over-long name: an error naming the key, not a filesystem_error
     const bool exists = std::filesystem::exists(p.shown, ec);
     if (ec) block.fail(key, "cannot access " + p.shown + " (" + ec.message() + ")");
+    if (!exists && is_data_path(given))
+        block.fail(key, "no such file: " + p.shown + " (data root " + data_root().string() +
+                            "; run scripts/fetch-data, or give the root with --data DIR or RTCSIM_DATA)");
     if (!exists)
         block.fail(key, "no such file: " + p.shown +
                             (std::filesystem::path(given).is_absolute() ? "" : " (paths are relative to the config file)"));

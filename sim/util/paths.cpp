@@ -3,6 +3,8 @@
 #include "core/input_error.h"
 
 #include <cctype>
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <system_error>
 
@@ -14,6 +16,22 @@ std::string config_relative_path(const std::string& path, const std::string& con
     const fs::path p(path);
     if (path.empty() || p.is_absolute()) return path;
     return (fs::path(config_file).parent_path() / p).lexically_normal().string();
+}
+
+bool is_data_path(const std::string& path) { return path.rfind(kDataPrefix, 0) == 0; }
+
+fs::path data_root() {
+    if (const char* env = std::getenv("RTCSIM_DATA"); env && *env) return fs::path(env).lexically_normal();
+#ifdef RTCSIM_SOURCE_DATA_DIR
+    return RTCSIM_SOURCE_DATA_DIR;
+#else
+    return "data";
+#endif
+}
+
+std::string config_data_path(const std::string& path, const std::string& config_file) {
+    if (!is_data_path(path)) return config_relative_path(path, config_file);
+    return (data_root() / path.substr(std::string(kDataPrefix).size())).lexically_normal().string();
 }
 
 std::vector<fs::path> preset_dirs() {
@@ -28,6 +46,14 @@ std::vector<fs::path> preset_dirs() {
 #ifdef RTCSIM_SOURCE_PRESET_DIR
     dirs.emplace_back(RTCSIM_SOURCE_PRESET_DIR);
 #endif
+    // The file this function was loaded from: the program itself, or the
+    // Python module, which a pip install puts beside its presets, wherever
+    // the source tree went.
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&preset_dirs), &info) != 0 && info.dli_fname != nullptr) {
+        const fs::path object = fs::path(info.dli_fname);
+        if (object != exe && object.is_absolute()) dirs.push_back((object.parent_path() / "configs" / "hw").lexically_normal());
+    }
     return dirs;
 }
 

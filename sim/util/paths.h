@@ -1,8 +1,10 @@
-// Paths named in configs, and where hardware presets are found.
+// Paths named in configs, the data root, and where hardware presets are found.
 //
 // A relative path in a config resolves against the directory of the config
 // file that names it (never the working directory), so a config runs from
-// anywhere. A preset value without a '/' and without ".json" is a preset
+// anywhere. A path starting "data:" names a file under the data root instead
+// (the public models scripts/fetch-data installs, docs/data.md), so the
+// shipped configs do not depend on where the data lies. A preset value without a '/' and without ".json" is a preset
 // *name*: `"cost": ["turing-calibrated"]` is <preset dir>/turing-calibrated.json,
 // with the preset directories searched in order (preset_dirs()).
 #pragma once
@@ -17,11 +19,27 @@ namespace rtc {
 // `config_file` (the working directory when it has none), lexically normal.
 [[nodiscard]] std::string config_relative_path(const std::string& path, const std::string& config_file);
 
+// The prefix of a path under the data root: "data:hair/sintel_hair_16pts.tfx".
+inline constexpr const char* kDataPrefix = "data:";
+[[nodiscard]] bool is_data_path(const std::string& path);
+
+// The one place the data root is decided, the first given of
+//   1. $RTCSIM_DATA, if set and not empty (`simulate --data DIR` sets it for
+//      its own run and the processes it starts);
+//   2. the source tree's data/, compiled in (where scripts/fetch-data puts it).
+[[nodiscard]] std::filesystem::path data_root();
+
+// A data file's path from a config: "data:REL" is data_root()/REL, anything
+// else config_relative_path(). Lexically normal.
+[[nodiscard]] std::string config_data_path(const std::string& path, const std::string& config_file);
+
 // Where presets named by name are looked for, in order, existing or not:
 //   1. $RTCSIM_PRESET_DIR, if set and not empty;
 //   2. <directory of the running program>/../share/rtcsim/hw (a relocated install);
 //   3. the install's preset directory compiled in (CMAKE_INSTALL_FULL_DATADIR/rtcsim/hw);
-//   4. the source tree's configs/hw compiled in (so a build tree works).
+//   4. the source tree's configs/hw compiled in (so a build tree works);
+//   5. configs/hw beside the shared object holding this code, when it is one
+//      (the Python module installed by pip carries the presets so: rtcsim/).
 [[nodiscard]] std::vector<std::filesystem::path> preset_dirs();
 
 // True when `value` names a preset by name rather than by path.

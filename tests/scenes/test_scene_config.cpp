@@ -3,7 +3,7 @@
 #include "scenes/stats.h"
 #include "sim/util/json_file.h"
 #include "sim/config/scene_config.h"
-#include "shared_data.h"
+#include "model_data.h"
 
 #include <doctest/doctest.h>
 
@@ -15,10 +15,10 @@ using namespace rtc;
 using nlohmann::json;
 
 namespace {
-// A config that claims to live in ../shared/data, so relative data paths
+// A config that claims to live in the data root, so relative data paths
 // resolve beside it.
-const std::string kConfig = (test::shared_data() / "run.json").string();
-const std::filesystem::path kData = test::shared_data();
+const std::string kConfig = (test::model_data() / "run.json").string();
+const std::filesystem::path kData = test::model_data();
 
 Scene load(const json& j) { return load_scene(JsonReader(j, kConfig, "/scene")); }
 
@@ -49,7 +49,7 @@ TEST_CASE("scene config: procedural hair") {
     CHECK(s.strands.segment_count() == 400);
     CHECK(s.strands.radii[4] == doctest::Approx(0.001f));
     CHECK_FALSE(s.mesh.triangles.empty());
-    if (!test::shared_present({kData / "hair/sintel_head.obj"})) return;
+    if (!test::models_present({kData / "hair/sintel_head.obj"})) return;
     // Mesh emitter, mesh path relative to the config's directory.
     const Scene m = load({{"type", "hair"}, {"emitter", "mesh"}, {"mesh", "hair/sintel_head.obj"},
                           {"strands", 50}, {"with_mesh", true}});
@@ -112,7 +112,7 @@ TEST_CASE("scene config: curve_basis, its defaults and its errors") {
 }
 
 TEST_CASE("scene config: files, radius set or scaled, follow hairs, hair with head") {
-    if (!test::shared_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj",
+    if (!test::models_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj",
                                kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair"}))
         return;
     const Scene sintel = load({{"type", "file"},
@@ -155,7 +155,7 @@ TEST_CASE("scene config: errors name the config file and the JSON path") {
     has(error_of({{"type", "hair"}, {"emitter", "lock"}, {"with_mesh", true}}), "/scene/with_mesh: a lock has no");
     has(error_of({{"type", "file"}}), "/scene: a file scene needs");
     has(error_of({{"type", "file"}, {"curves", {{"path", "nope.hair"}}}}), "/scene/curves/path: no such file");
-    if (!test::shared_present({kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair",
+    if (!test::models_present({kData / "hair/tressfx_bear.tfx", kData / "hair/fur_synthetic.hair",
                                kData / "hair/sintel_head.obj"}))
         return;  // the rest reads real files
     has(error_of({{"type", "file"}, {"curves", {{"path", "hair/tressfx_bear.tfx"}}}}),

@@ -6,7 +6,7 @@
 #include "scenes/loaders/loaders.h"
 #include "scenes/stats.h"
 
-#include "shared_data.h"
+#include "model_data.h"
 
 #include <doctest/doctest.h>
 
@@ -50,8 +50,8 @@ TEST_CASE("scene export: text and HAIR round trips are exact") {
 }
 
 TEST_CASE("scene export: the real Sintel hair survives a text round trip") {
-    const fs::path data = test::shared_data() / "hair/sintel_hair_16pts.tfx";
-    if (!test::shared_present({data})) return;
+    const fs::path data = test::model_data() / "hair/sintel_hair_16pts.tfx";
+    if (!test::models_present({data})) return;
     const Strands s = load_tfx(data).strands;
     write_txt(s, scratch("sintel.txt"));
     check_same(s, load_txt(scratch("sintel.txt")).strands);

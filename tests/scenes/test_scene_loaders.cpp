@@ -1,7 +1,7 @@
-// The loaders against the real models in ../shared/data (counts from the data
-// README and the .SOURCE.txt files) and against tiny hand-made fixtures.
+// The loaders against the real models of the data root (counts from the
+// .SOURCE.txt files of ../shared/data) and against tiny hand-made fixtures.
 #include "scenes/loaders/loaders.h"
-#include "shared_data.h"
+#include "model_data.h"
 
 #include <doctest/doctest.h>
 
@@ -13,7 +13,7 @@ namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles the
 using namespace rtc;
 
 namespace {
-const std::filesystem::path kData = test::shared_data();
+const std::filesystem::path kData = test::model_data();
 const std::filesystem::path kFixtures = std::filesystem::path(RTCSIM_SOURCE_DIR) / "tests/fixtures";
 
 bool all_radii(const Strands& s, float r) {
@@ -24,7 +24,7 @@ bool all_radii(const Strands& s, float r) {
 }  // namespace
 
 TEST_CASE("scene loaders: Sintel hair (TressFX 4) and head (OBJ)") {
-    if (!test::shared_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj"})) return;
+    if (!test::models_present({kData / "hair/sintel_hair_16pts.tfx", kData / "hair/sintel_head.obj"})) return;
     const LoadedCurves hair = load_curves(kData / "hair/sintel_hair_16pts.tfx");
     CHECK(hair.strands.strand_count() == 11400);
     CHECK(hair.strands.segment_count() == 171000);
@@ -41,14 +41,14 @@ TEST_CASE("scene loaders: Sintel hair (TressFX 4) and head (OBJ)") {
 }
 
 TEST_CASE("scene loaders: TressFX 3 bear guides") {
-    if (!test::shared_present({kData / "hair/tressfx_bear.tfx"})) return;
+    if (!test::models_present({kData / "hair/tressfx_bear.tfx"})) return;
     const LoadedCurves bear = load_curves(kData / "hair/tressfx_bear.tfx", CurveFormat::Tfx);
     CHECK(bear.strands.strand_count() == 48113);
     CHECK(bear.strands.segment_count() == 144339);
 }
 
 TEST_CASE("scene loaders: HAIR fur with per-point thickness") {
-    if (!test::shared_present({kData / "hair/fur_synthetic.hair"})) return;
+    if (!test::models_present({kData / "hair/fur_synthetic.hair"})) return;
     const LoadedCurves fur = load_curves(kData / "hair/fur_synthetic.hair");
     CHECK(fur.strands.strand_count() == 50000);
     CHECK(fur.strands.segment_count() == 150000);
@@ -60,7 +60,7 @@ TEST_CASE("scene loaders: HAIR fur with per-point thickness") {
 }
 
 TEST_CASE("scene loaders: TrackVis stroke streamlines") {
-    if (!test::shared_present({kData / "streamlines/stroke.trk"})) return;
+    if (!test::models_present({kData / "streamlines/stroke.trk"})) return;
     const LoadedCurves trk = load_curves(kData / "streamlines/stroke.trk");
     CHECK(trk.strands.strand_count() == 36763);
     CHECK(trk.strands.segment_count() == 200705);
@@ -68,7 +68,7 @@ TEST_CASE("scene loaders: TrackVis stroke streamlines") {
 }
 
 TEST_CASE("scene loaders: SWC neurons, one segment per parent-child pair") {
-    if (!test::shared_present({kData / "neurons/hemibrain_DA1_lPN"})) return;
+    if (!test::models_present({kData / "neurons/hemibrain_DA1_lPN"})) return;
     std::size_t total = 0;
     const std::pair<const char*, std::size_t> expected[] = {{"1734350788", 4464}, {"1734350908", 4846},
                                                             {"722817260", 4331}, {"754534424", 4695},

@@ -1,5 +1,5 @@
-// The command line (CLI11), paths relative to the config file, presets by
-// name, output-directory safety, calibrate's output, provenance in
+// The command line (CLI11), paths relative to the config file, the data
+// root, presets by name, output-directory safety, calibrate's output, provenance in
 // report.json, the sweep order and re-pricing instead of re-tracing.
 #include "core/input_error.h"
 #include "sim/app/calibrate_runs.h"
@@ -127,6 +127,37 @@ TEST_CASE("paths: a config elsewhere runs from any directory, presets by name") 
     const std::string expected =
         file + ": /scene/curves/path: no such file: " + (dir / "cfg" / "cfg" / "data" / "strands.txt").string();
     CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains(expected.c_str()), InputError);
+}
+
+TEST_CASE("paths: data: paths name the data root (--data, then RTCSIM_DATA, then the repository's data/)") {
+    const fs::path dir = scratch("data_root");
+    write(dir / "root_a" / "hair" / "s.txt", "0 0 0 0.02\n0 0.5 0 0.02\n");
+    write(dir / "root_b" / "hair" / "s.txt", "0 0 0 0.02\n0 0.5 0 0.02\n\n0.2 0 0 0.02\n0.2 0.5 0.1 0.01\n");
+    write(dir / "cfg" / "run.json", R"({"scene": {"type": "file", "curves": {"path": "data:hair/s.txt"}},
+        "workload": {"width": 8, "height": 8, "spp": 1, "bounces": 0}, "output": {"images": false}})");
+    const std::string config = (dir / "cfg" / "run.json").string();
+    ::unsetenv("RTCSIM_DATA");
+    CHECK(data_root() == fs::path(RTCSIM_SOURCE_DIR) / "data");
+    ::setenv("RTCSIM_DATA", (dir / "root_a").c_str(), 1);
+    CHECK(config_data_path("data:hair/s.txt", config) == (dir / "root_a" / "hair" / "s.txt").string());
+    CHECK(config_data_path("hair/s.txt", config) == (dir / "cfg" / "hair" / "s.txt").string());  // no prefix
+    REQUIRE(simulate({config, "--out", (dir / "out_a").string()}) == 0);
+    CHECK(report_of(dir / "out_a")["scene"]["strands"] == 1);
+    CHECK(report_of(dir / "out_a")["provenance"]["data_root"] == (dir / "root_a").string());
+    // --data comes before the environment.
+    REQUIRE(simulate({config, "--data", (dir / "root_b").string(), "--out", (dir / "out_b").string()}) == 0);
+    CHECK(report_of(dir / "out_b")["scene"]["strands"] == 2);
+    // A missing model names the file and what to do, when the config is planned.
+    ::setenv("RTCSIM_DATA", (dir / "empty").c_str(), 1);
+    const std::string expected = config + ": /scene/curves/path: no such file: " +
+                                 (dir / "empty" / "hair" / "s.txt").string() + " (data root " +
+                                 (dir / "empty").string() + "; run scripts/fetch-data";
+    CHECK_THROWS_WITH_AS((void)plan_runs(json::parse(read_text_file(config)), config),
+                         doctest::Contains(expected.c_str()), InputError);
+    CHECK(simulate({config, "--out", (dir / "out_c").string()}) == 2);
+    CHECK(simulate({config, "--data", (dir / "nowhere").string()}) == 2);
+    CHECK(error_of({config, "--data", "--quiet"}).find("--data needs a value") != std::string::npos);
+    ::unsetenv("RTCSIM_DATA");
 }
 
 TEST_CASE("paths: a missing preset names its key and the places searched") {
