@@ -27,6 +27,7 @@ int simulate_main(const std::vector<std::string>& args) {
             return 0;
         }
         if (cli.merge) return run_merge(cli);
+        if (cli.estimate && cli.target_error) return print_sampling_estimate(cli);
         if (cli.estimate) return print_shard_estimates(cli);
         if (cli.shard) return run_shard(cli);
         return run_all(cli);
