@@ -102,7 +102,7 @@ struct Cell {  // one (method, preset) of a point, over the seeds
     std::string method, preset;
     double full = 0.0;
     int covered = 0, seeds = 0;
-    double sum_abs_error = 0.0, max_abs_error = 0.0, sum_half_width = 0.0;
+    double sum_error = 0.0, sum_abs_error = 0.0, max_abs_error = 0.0, sum_half_width = 0.0;
     std::vector<std::array<double, 2>> intervals;  // per seed (for --verify)
 };
 
@@ -129,7 +129,7 @@ int run(const Options& o) {
             if (m.method == c.baseline || !m.runnable) continue;
             for (std::size_t p = 0; p < full.costs.size(); ++p)
                 if (full.speedup(m.method, p) > 0.0)
-                    cells.push_back({m.method, full.costs[p].name, full.speedup(m.method, p), 0, 0, 0, 0, 0, {}});
+                    cells.push_back({m.method, full.costs[p].name, full.speedup(m.method, p), 0, 0, 0, 0, 0, 0, {}});
         }
         const MethodRun* base = full.baseline();
         for (int seed = 1; seed <= o.seeds; ++seed) {
@@ -144,7 +144,8 @@ int run(const Options& o) {
                 std::size_t p = 0;
                 while (full.costs[p].name != cell.preset) ++p;
                 const SampledEstimate e = estimate_ratio(b.tile_cycles[p], s.tile_cycles[p], sample->k());
-                const double err = std::abs(e.value / cell.full - 1.0);
+                const double signed_err = e.value / cell.full - 1.0, err = std::abs(signed_err);
+                cell.sum_error += signed_err;
                 cell.covered += e.interval[0] <= cell.full && cell.full <= e.interval[1];
                 ++cell.seeds;
                 cell.sum_abs_error += err;
@@ -179,9 +180,10 @@ int run(const Options& o) {
                         t_sampled / o.verify, 100.0 * t_sampled / o.verify / t_full, o.verify, worst_mismatch);
         std::printf("\n");
         for (const Cell& cell : cells) {
-            std::printf("  %-6s %-28s full %.4fx  covered %3d/%d  mean |err| %.2f%%  max |err| %.2f%%  mean half-width %.2f%%\n",
+            std::printf("  %-6s %-28s full %.4fx  covered %3d/%d  mean err %+.2f%%  mean |err| %.2f%%  max |err| %.2f%%  "
+                        "mean half-width %.2f%%\n",
                         cell.method.c_str(), cell.preset.c_str(), cell.full, cell.covered, cell.seeds,
-                        100.0 * cell.sum_abs_error / cell.seeds, 100.0 * cell.max_abs_error,
+                        100.0 * cell.sum_error / cell.seeds, 100.0 * cell.sum_abs_error / cell.seeds, 100.0 * cell.max_abs_error,
                         100.0 * cell.sum_half_width / cell.seeds);
             covered_all += cell.covered;
             cells_all += cell.seeds;
