@@ -159,6 +159,15 @@ class Report:
         pair = (table.get(method) or {}).get(self._preset(preset))
         return tuple(pair) if pair else None
 
+    def sampling_interval(self, method=None, preset=None):
+        """A sampled run's 95 % sampling interval (low, high) of speedup(method,
+        preset) (docs/sampling.md), or None when every tile was traced;
+        `data["sampling"]` says the fraction and seed."""
+        method = method or self.others[0]
+        table = self.data.get(f"speedup_sampling_interval_over_{self.baseline}") or {}
+        pair = (table.get(method) or {}).get(self._preset(preset))
+        return tuple(pair) if pair else None
+
     def uncertainty_note(self, preset=None):
         """What the preset's intervals are, or why it has none."""
         return (self.data.get("uncertainty") or {}).get(self._preset(preset))

@@ -59,3 +59,24 @@ def test_intervals_through_the_cli(simulate, tmp_path):
     fig = plot.speedup_table(reports)
     texts = [c.get_text().get_text() for c in fig.axes[0].tables[0].get_celld().values()]
     assert any(t.endswith("]") and "x [" in t for t in texts)
+
+
+def test_sampling_intervals_through_the_cli(simulate, tmp_path):
+    """A sampled run (docs/sampling.md): `sampling_interval` reads each
+    speedup's 95 % sampling interval, report.json says the fraction and
+    seed; an unsampled run has none."""
+    sets = {"workload.width": 32, "workload.height": 32, "output.images": False, "output.arrays": False}
+    args = [a for k, v in sets.items() for a in ("--set", f"{k}={json.dumps(v)}")]
+    for sample in (["--sample", "0.25", "--sample-seed", "3"], []):
+        out = tmp_path / ("sampled" if sample else "full")
+        cli = simulate(TINY, "--quiet", "--threads", "2", "--out", out, *args, *sample)
+        assert cli.returncode == 0, cli.stderr
+        r = rtcsim.load_report(out)
+        if not sample:
+            assert r.sampling_interval("obb") is None and "sampling" not in r.data
+            continue
+        assert r.data["sampling"]["fraction"] == 0.25 and r.data["sampling"]["seed"] == 3
+        low, high = r.sampling_interval("obb")
+        assert low <= r.speedup("obb") <= high and low < high
+        row = [row for row in csv.DictReader(open(out / "results.csv")) if row["method"] == "obb"][0]
+        assert float(row["sampling_low"]) == low and float(row["sampling_high"]) == high

@@ -75,6 +75,15 @@ options (--opt value or --opt=value):
                         or bands of a frame's rows when there are fewer points
                         than shards; writes frames/ and shard.json into --out
   --estimate            print each shard's estimated work and exit (with --shards N)
+  --sample F            trace a stratified sample of about F of the warp tiles (F = 1/k,
+                        e.g. 0.0625) and scale the totals; every total and speedup gets
+                        a 95 % sampling interval (sets sampling.fraction; docs/sampling.md)
+  --sample-seed S       which tiles are sampled (sets sampling.seed; default 1)
+  --estimate --target-error E
+                        trace a pilot sample (--sample, default 1/64) of every sweep point
+                        and suggest the fraction whose sampling intervals on every speedup
+                        are within +/-E (relative, e.g. 0.02); one JSON line per point, then
+                        the suggestion
 
 paths and presets:
   Every path in a config is relative to that config file, except "data:..."
@@ -144,7 +153,8 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     o.command_line.insert(o.command_line.end(), args.begin(), args.end());
     CLI::App app{"simulate"};
     app.set_help_flag();  // cli_help() is the help text
-    std::string out, data, threads, max_rays, max_memory, max_break_even, shard, shards;
+    std::string out, data, threads, max_rays, max_memory, max_break_even, shard, shards, sample, sample_seed,
+        target_error;
     std::vector<std::string> positional;
     app.add_flag("-h,--help", o.help);
     app.add_flag("--version", o.version);
@@ -155,7 +165,9 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
     // Given twice, the last value wins (as with --set, later overrides earlier).
     for (const auto& [name, value] : {std::pair{"--out", &out}, {"--data", &data}, {"--threads", &threads},
                                       {"--max-rays", &max_rays}, {"--max-memory", &max_memory},
-                                      {"--max-break-even", &max_break_even}, {"--shard", &shard}, {"--shards", &shards}})
+                                      {"--max-break-even", &max_break_even}, {"--shard", &shard}, {"--shards", &shards},
+                                      {"--sample", &sample}, {"--sample-seed", &sample_seed},
+                                      {"--target-error", &target_error}})
         app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     // One value per --set (a vector option would swallow the config name).
     app.add_option("--set", o.sets)
@@ -215,6 +227,32 @@ CliOptions parse_cli(const std::vector<std::string>& args) {
         require_value(shards, "--shards");
         if (!o.estimate) throw InputError("simulate: --shards goes with --estimate (a run takes --shard I/N)");
         o.estimate_shards = parse_shard_spec("0/" + shards, "simulate: --shards").count;
+    }
+    if (given("--sample")) {
+        require_value(sample, "--sample");
+        double f = 0.0;
+        const auto [p, ec] = std::from_chars(sample.data(), sample.data() + sample.size(), f);
+        if (ec != std::errc() || p != sample.data() + sample.size() || !(f > 0.0 && f <= 1.0))
+            throw InputError("simulate: --sample: expected a fraction in (0, 1] such as 0.0625, got \"" + sample + "\"");
+        o.sets.push_back("sampling.fraction=" + sample);
+    }
+    if (given("--sample-seed")) {
+        require_value(sample_seed, "--sample-seed");
+        std::uint64_t seed = 0;
+        const auto [p, ec] = std::from_chars(sample_seed.data(), sample_seed.data() + sample_seed.size(), seed);
+        if (ec != std::errc() || p != sample_seed.data() + sample_seed.size() || seed > (1ull << 53))
+            throw InputError("simulate: --sample-seed: expected an integer from 0 to 2^53, got \"" + sample_seed + "\"");
+        o.sets.push_back("sampling.seed=" + sample_seed);
+    }
+    if (given("--target-error")) {
+        require_value(target_error, "--target-error");
+        double e = 0.0;
+        const auto [p, ec] = std::from_chars(target_error.data(), target_error.data() + target_error.size(), e);
+        if (ec != std::errc() || p != target_error.data() + target_error.size() || !(e > 0.0 && e < 1.0))
+            throw InputError("simulate: --target-error: expected a relative error in (0, 1) such as 0.02, got \"" +
+                             target_error + "\"");
+        if (!o.estimate) throw InputError("simulate: --target-error goes with --estimate");
+        o.target_error = e;
     }
     if (!positional.empty() && positional.front() == "merge") {
         o.merge = true;

@@ -31,6 +31,11 @@ struct CliOptions {
     std::vector<std::string> merge_dirs;
     bool estimate = false;                   // --estimate: per-shard work, no run
     std::uint32_t estimate_shards = 1;       // --shards N (with --estimate)
+    // Sampled simulation (docs/sampling.md): --sample F and --sample-seed S
+    // are added to `sets` as sampling.fraction and sampling.seed (after the
+    // --set overrides: they win); --estimate --target-error E suggests a
+    // fraction from a pilot sample.
+    std::optional<double> target_error;
 };
 
 // Throws InputError with a one-line message on bad arguments.

@@ -16,6 +16,7 @@
 #include "sim/run/work_estimate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -256,8 +257,88 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
             for (auto& [preset, n] : resolution_notes(r))
                 if (std::find(notes.begin(), notes.end(), n) == notes.end()) notes.push_back(std::move(n));
         for (const std::string& n : notes) std::cerr << "note: " << n << "\n";
+        if (!runs.empty() && runs.front().sample) {
+            const TileSample& s = *runs.front().sample;
+            std::cerr << "note: sampled: " << s.traced_tiles() << " of " << s.tiles() << " tiles traced (1/" << s.k()
+                      << ", seed " << s.seed() << "), totals scaled by " << s.k()
+                      << "; each speedup's 95 % sampling interval is in results.csv (sampling_low, sampling_high) "
+                         "and report.json (docs/sampling.md)\n";
+        }
         std::cerr << "outputs in " << out << "/\n";
     }
+    return 0;
+}
+
+namespace {
+
+// The pilot's k: 1/64 of the tiles, or fewer strata's worth on a small
+// frame so that the pilot still draws about 30 strata (60 tiles).
+std::uint32_t pilot_k(const RunConfig& c) {
+    const auto tiles = static_cast<std::uint64_t>((c.workload.width + 7) / 8) * static_cast<std::uint64_t>((c.workload.height + 3) / 4);
+    return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(tiles / 60, 1, 64));
+}
+
+}  // namespace
+
+int print_sampling_estimate(const CliOptions& cli) {
+    const double target = *cli.target_error;
+    std::vector<std::string> sets = cli.sets;
+    RunPlan plan = plan_config_text(cli.config, read_text_file(cli.config), sets, cli.limits);
+    const bool given = sample_k(plan.parsed.front().sampling.fraction) > 1;
+    if (!given) {  // the pilot's fraction, from the first point's frame
+        const std::uint32_t k0 = pilot_k(plan.parsed.front());
+        sets.push_back("sampling.fraction=" + nlohmann::json(1.0 / k0).dump());
+        plan = plan_config_text(cli.config, read_text_file(cli.config), sets, cli.limits);
+    }
+    plan.command_line = cli.command_line;
+    std::uint32_t k_all = UINT32_MAX;
+    for (std::size_t i = 0; i < plan.points.size(); ++i) {
+        RunContext ctx;
+        ctx.threads = cli.threads;
+        ctx.quiet = cli.quiet;
+        const RunResult r = run_point(plan, i, ctx);
+        const std::uint32_t k0 = r.sample ? r.sample->k() : 1;
+        nlohmann::ordered_json line;
+        line["point"] = i;
+        if (!r.sweep_label.empty()) line["label"] = r.sweep_label;
+        line["pilot_fraction"] = 1.0 / k0;
+        // The widest relative half-width over the speedups of every method and preset.
+        double worst = 0.0;
+        nlohmann::ordered_json where;
+        for (const MethodRun& m : r.methods) {
+            if (m.method == r.config.baseline || !m.runnable) continue;
+            for (std::size_t p = 0; p < r.costs.size(); ++p) {
+                const auto e = r.sampled_speedup(m.method, p);
+                if (!e || !(e->value > 0.0)) continue;
+                const double rel = (e->interval[1] - e->interval[0]) / 2.0 / e->value;
+                if (rel < worst && !where.empty()) continue;
+                worst = rel;
+                where = {{"method", m.method}, {"preset", r.costs[p].name}, {"speedup", e->value},
+                         {"interval", e->interval}, {"relative_half_width", rel}};
+            }
+        }
+        double trace = 0.0, build = 0.0;
+        for (const MethodRun& m : r.methods) {
+            trace += m.frame.trace_seconds;
+            build += m.build_seconds;
+        }
+        const std::uint32_t k = r.sample ? suggested_k(k0, worst, target) : 1;
+        line["widest"] = where;
+        line["suggested_fraction"] = 1.0 / k;
+        line["pilot_trace_seconds"] = trace;
+        line["build_seconds"] = build;
+        line["estimated_trace_seconds"] = trace * k0 / k;
+        std::cout << line.dump() << std::endl;
+        k_all = std::min(k_all, k);
+    }
+    if (k_all == UINT32_MAX) k_all = 1;
+    nlohmann::ordered_json last = {{"target_error", target},
+                                   {"suggested_fraction", 1.0 / k_all},
+                                   {"option", k_all > 1 ? "--sample " + nlohmann::json(1.0 / k_all).dump()
+                                                        : std::string("(no sampling: trace every tile)")},
+                                   {"rule", "(1 - f) / f = (1 - f0) / f0 x (target / pilot half-width)^2, f = 1/k "
+                                            "rounded down; docs/sampling.md"}};
+    std::cout << last.dump() << std::endl;
     return 0;
 }
 

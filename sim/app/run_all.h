@@ -75,4 +75,11 @@ using PointFrames = std::function<FrameResult(std::size_t point, const std::stri
 // by the caller); with `frames`, points take their frames from it.
 int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& out, const PointFrames* frames);
 
+// `simulate CONFIG --estimate --target-error E` (docs/sampling.md): traces a
+// pilot sample of every sweep point and suggests the sampling fraction whose
+// 95 % intervals on every speedup are within +/-E.
+// One JSON line per sweep point (its pilot, its widest speedup interval and
+// the fraction it needs), then the suggestion over all points.
+int print_sampling_estimate(const CliOptions& cli);
+
 }  // namespace rtc

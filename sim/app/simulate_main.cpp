@@ -45,6 +45,7 @@ int simulate_main(const std::vector<std::string>& args) {
         }
         if (cli.data) use_data_root(*cli.data);
         if (cli.merge) return run_merge(cli);
+        if (cli.estimate && cli.target_error) return print_sampling_estimate(cli);
         if (cli.estimate) return print_shard_estimates(cli);
         if (cli.shard) return run_shard(cli);
         return run_all(cli);

@@ -125,7 +125,7 @@ void load_presets(RunConfig& c, PresetCache& cache) {
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file, PresetCache* presets) {
     const JsonReader r(config, file);
     r.allow_only({"name", "description", "scene", "primitives", "methods", "baseline", "bvh", "traversal",
-                  "cluster", "cost", "memory", "workload", "output", "uncertainty", "calibrate", "break_even"});
+                  "cluster", "cost", "memory", "workload", "output", "uncertainty", "calibrate", "break_even", "sampling"});
     RunConfig c;
     c.file = file;
     c.name = r.string("name", std::filesystem::path(file).stem().string());
@@ -232,6 +232,16 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         u.allow_only({"draws", "seed"});
         c.uncertainty.draws = static_cast<int>(u.integer("draws", 64, 0, 4096));
         c.uncertainty.seed = static_cast<std::uint64_t>(u.integer("seed", 1, 0, 1LL << 53));
+    }
+    if (r.has("sampling")) {
+        const JsonReader sr = r.child("sampling");
+        sr.allow_only({"fraction", "seed"});
+        c.sampling.fraction = sr.number("fraction", 1.0, 1e-6, 1.0);
+        if (!(c.sampling.fraction > 0.0)) sr.fail("fraction", "must be > 0 (1: every tile)");
+        c.sampling.seed = static_cast<std::uint64_t>(sr.integer("seed", 1, 0, 1LL << 53));
+        if (sample_k(c.sampling.fraction) > 1 && c.workload.type == WorkloadType::Rays)
+            sr.fail("fraction", "sampling traces warp tiles of a camera workload; a ray-file workload runs whole "
+                                "(fraction 1)");
     }
     if (r.has("break_even")) {
         const nlohmann::json& list = config["break_even"];

@@ -6,6 +6,7 @@
 
 #include "sim/config/scene_config.h"
 #include "sim/config/workload_config.h"
+#include "sim/execution/tile_sample.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/memory_model.h"
 #include "sim/methods/method.h"
@@ -74,6 +75,9 @@ struct RunConfig {
     OutputOptions output;
     UncertaintyOptions uncertainty;
     std::vector<BreakEvenSpec> break_even;  // optional `break_even` list
+    // Sampled simulation (docs/sampling.md): trace 1 / round(1 / fraction)
+    // of the warp tiles, stratified, and scale; 1: every tile.
+    SamplingOptions sampling;
 };
 
 // Presets loaded once per file, shared by the points of a plan.

@@ -10,6 +10,7 @@
 #include "sim/hardware/trace_hit.h"
 #include "sim/hardware/uncertainty/draw_pricing.h"
 #include "sim/hardware/warp_trace.h"
+#include "sim/execution/tile_sample.h"
 #include "sim/workload/camera.h"
 #include "sim/workload/path_tracer.h"
 
@@ -85,6 +86,9 @@ struct FrameOptions {
     // bands of the frame's tasks and keep each task's totals; 0 bands: the
     // whole frame, no task records.
     std::uint32_t band = 0, bands = 0;
+    // Sampled runs (camera workloads, docs/sampling.md): trace only the
+    // sample's tiles; the others' pixels are zero. Null: every tile.
+    const TileSample* sample = nullptr;
 };
 
 // Band `band` of `bands` over `tasks` tasks: [first, second), contiguous; the

@@ -115,7 +115,13 @@ FrameResult run_frame_per_ray(const RayWorkload& frame, const FrameOptions& fo, 
             const CameraLanes& cam = f.camera();
             RayCounts* const row_counts = out.pixel_counts.data() + static_cast<std::size_t>(py) * width;
             Vec3* const row_radiance = out.radiance.data() + static_cast<std::size_t>(py) * width;
+            const TileSample* const sample = fo.sample;
             for (std::uint32_t px = 0; px < width; ++px) {
+                if (sample && !sample->traced_pixel(px, py)) {  // not in the sample: no work, zero pixels
+                    row_counts[px].clear();
+                    row_radiance[px] = Vec3{0.0f};
+                    continue;
+                }
                 sink.ray.clear();
                 // The samples summed in the pixel's own slot: a sum of the
                 // loop's own lived in the stack frame anyway (the traces'

@@ -109,6 +109,15 @@ void WarpFrame::finish_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0
         for (std::uint32_t px = x0; px < x1; ++px) out_.radiance[py * width + px] /= static_cast<float>(spp);
 }
 
+void WarpFrame::skip_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1) {
+    const auto width = static_cast<std::size_t>(out_.width);
+    for (std::uint32_t py = y0; py < y1; ++py)
+        for (std::uint32_t px = x0; px < x1; ++px) {
+            out_.pixel_counts[py * width + px].clear();
+            out_.radiance[py * width + px] = Vec3{0.0f};
+        }
+}
+
 void WarpFrame::finish_row(Thread& th, Task& t, std::uint32_t y0, std::uint32_t y1) {
     // The rows' counts, read back from their pixels (as the per-ray runner
     // sums its row): cheaper than a 64-bit add per pixel.

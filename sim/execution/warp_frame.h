@@ -99,6 +99,8 @@ public:
     // finish_row adds the rows' counts to the task's totals.
     void start_row(Thread& th, std::uint32_t y0, std::uint32_t y1);
     void finish_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1);
+    // A tile a sampled run does not trace: its pixels' counts and radiance zeroed.
+    void skip_tile(std::uint32_t x0, std::uint32_t x1, std::uint32_t y0, std::uint32_t y1);
     void finish_row(Thread& th, Task& t, std::uint32_t y0, std::uint32_t y1);
 
     void task_done() { progress_.advance(1); }
@@ -157,6 +159,10 @@ FrameResult run_frame_warp(const RayWorkload& frame, const FrameOptions& fo, con
             f.start_row(th, y0, y1);
             for (std::uint32_t x0 = 0; x0 < width; x0 += tw) {
                 const std::uint32_t x1 = std::min(x0 + tw, width);
+                if (fo.sample && !fo.sample->traced(x0 / tw, static_cast<std::uint32_t>(task))) {
+                    f.skip_tile(x0, x1, y0, y1);  // not in the sample: no work, zero pixels
+                    continue;
+                }
                 for (std::uint32_t s = 0; s < frame.path.spp; ++s) {
                     for (std::uint32_t py = y0; py < y1; ++py)
                         for (std::uint32_t px = x0; px < x1; ++px) {

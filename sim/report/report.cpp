@@ -26,13 +26,35 @@ nlohmann::ordered_json scene_stats_json(const SceneStats& s) {
     return j;
 }
 
-nlohmann::ordered_json events_json(const EventTotals& totals, std::uint64_t rays) {
+nlohmann::ordered_json events_json(const EventTotals& totals, std::uint64_t rays, const SampledMethod* sampled) {
     nlohmann::ordered_json j;
     for (std::size_t i = 0; i < kEventCount; ++i) {
         const double per_ray = rays ? static_cast<double>(totals.n[i]) / static_cast<double>(rays) : 0.0;
         j[std::string(kEventNames[i])] = {{"total", totals.n[i]}, {"per_ray", per_ray}};
+        if (sampled) j[std::string(kEventNames[i])]["sampling_interval"] = sampled->event_intervals[i];
     }
     return j;
+}
+
+// A sampled run's design: what was traced and how the totals were scaled.
+nlohmann::ordered_json sampling_json(const RunResult& run) {
+    const TileSample& s = *run.sample;
+    return {{"fraction", s.fraction()},
+            {"requested_fraction", run.config.sampling.fraction},
+            {"seed", s.seed()},
+            {"tile", {s.tile_width(), s.tile_height()}},
+            {"tiles", s.tiles()},
+            {"tiles_traced", s.traced_tiles()},
+            {"strata", s.strata()},
+            {"tiles_per_stratum", 2 * s.k()},
+            {"confidence", 0.95},
+            {"method", "stratified sample of warp tiles, two per stratum of " + std::to_string(2 * s.k()) +
+                           " consecutive tiles (row-major); totals are " + std::to_string(s.k()) +
+                           " x the traced tiles' sums; speedups are ratio estimators over the same tiles for every "
+                           "method; intervals are 95 % (Student t, Satterthwaite's degrees of freedom): "
+                           "docs/sampling.md"},
+            {"images", "per-pixel images and arrays show the traced tiles only (the others are zero): " +
+                           std::to_string(s.traced_tiles()) + " of " + std::to_string(s.tiles()) + " tiles"}};
 }
 
 nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
@@ -43,10 +65,14 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
         j["instances"] = m.instances;
         return j;
     }
-    const std::uint64_t rays = m.frame.rays_traced;
+    const std::uint64_t rays = m.rays();
     j["instances"] = m.instances;
     j["rays"] = rays;
-    j["events"] = events_json(m.frame.totals, rays);
+    if (m.sampled) {
+        j["rays_traced"] = m.frame.rays_traced;
+        j["rays_sampling_interval"] = m.sampled->rays_interval;
+    }
+    j["events"] = events_json(m.totals(), rays, m.sampled ? &*m.sampled : nullptr);
     nlohmann::ordered_json cycles;
     for (std::size_t p = 0; p < run.costs.size(); ++p) {
         const PricedRun& pr = m.priced[p];
@@ -61,12 +87,16 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
             {"total", pr.total_cycles},
             {"per_ray", rays ? pr.total_cycles / static_cast<double>(rays) : 0.0},
             {"breakdown", breakdown}};
+        if (m.sampled && p < m.sampled->cycles.size() && m.sampled->cycles[p]) {
+            entry["sampling_interval"] = m.sampled->cycles[p]->interval;
+            entry["sampling_std_error"] = m.sampled->cycles[p]->std_error;
+        }
         // Priced, but not what this machine builds (CostModel::hypothetical).
         if (const std::string why = run.costs[p].hypothetical_reason(m.method); !why.empty()) entry["hypothetical"] = why;
         // What one intersection-program call costs on average under this
         // preset (its program events, priced per call): the derived figure of
         // a preset that prices operation classes (docs/execution-model.md).
-        if (const std::uint64_t calls = m.frame.totals[Event::IsCall]; calls > 0) {
+        if (const std::uint64_t calls = m.totals()[Event::IsCall]; calls > 0) {
             double program = 0.0;
             for (std::size_t i = 0; i < kEventCount; ++i)
                 if (kEventUnits[i] == EventUnit::Program) program += pr.by_event[i];
@@ -107,9 +137,9 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
         cycles[run.costs[p].name] = entry;
     }
     j["cycles"] = cycles;
-    if (const std::uint64_t calls = m.frame.totals[Event::IsPhantom]; calls > 0) {
+    if (const std::uint64_t calls = m.totals()[Event::IsPhantom]; calls > 0) {
         // Either program counts one is_phantom per call and its own iterations.
-        const EventTotals& e = m.frame.totals;
+        const EventTotals& e = m.totals();
         const auto per_call = [&](std::uint64_t n) { return static_cast<double>(n) / static_cast<double>(calls); };
         j["phantom"] = {
             {"program", std::string(phantom_program_name(run.config.trace.phantom.program))},
@@ -141,7 +171,7 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
     j["simulator"] = {{"build_seconds", m.build_seconds},
                       {"trace_seconds", m.frame.trace_seconds},
                       {"rays_per_second", m.frame.trace_seconds > 0
-                                              ? static_cast<double>(rays) / m.frame.trace_seconds
+                                              ? static_cast<double>(m.frame.rays_traced) / m.frame.trace_seconds
                                               : 0.0},
                       {"structure_bytes", m.simulator_bytes}};
     return j;
@@ -198,27 +228,34 @@ nlohmann::ordered_json report_json(const RunResult& run, const nlohmann::ordered
     for (const auto& [preset, note] : resolution_notes(run)) resolution[preset] = note;
     if (!resolution.empty()) j["resolution_notes"] = resolution;
     j["memory_preset"] = run.memory.name;
+    if (run.sample) j["sampling"] = sampling_json(run);
     nlohmann::ordered_json methods;
     for (const MethodRun& m : run.methods) methods[m.method] = method_json(m, run);
     j["methods"] = methods;
     nlohmann::ordered_json speedups = nlohmann::ordered_json::object(), overhead = nlohmann::ordered_json::object();
-    nlohmann::ordered_json intervals = nlohmann::ordered_json::object();
+    nlohmann::ordered_json intervals = nlohmann::ordered_json::object(), sampled = nlohmann::ordered_json::object();
     for (const MethodRun& m : run.methods) {
         if (m.method == run.config.baseline) continue;
         nlohmann::ordered_json per_preset, interval_per_preset = nlohmann::ordered_json::object();
+        nlohmann::ordered_json sampled_per_preset = nlohmann::ordered_json::object();
         for (std::size_t p = 0; p < run.costs.size(); ++p) {
             const double s = run.speedup(m.method, p);
             per_preset[run.costs[p].name] = s > 0 ? nlohmann::ordered_json(s) : nlohmann::ordered_json();
             // Presets without draws get no entry; "uncertainty" below says why.
             if (const auto i = run.speedup_interval(m.method, p)) interval_per_preset[run.costs[p].name] = *i;
+            if (const auto e = run.sampled_speedup(m.method, p)) sampled_per_preset[run.costs[p].name] = e->interval;
         }
         speedups[m.method] = per_preset;
         intervals[m.method] = interval_per_preset;
+        sampled[m.method] = sampled_per_preset;
         const double o = run.memory_overhead_percent(m.method);
         if (!std::isnan(o)) overhead[m.method] = o;
     }
     j["speedup_over_" + run.config.baseline] = speedups;
     j["speedup_interval_over_" + run.config.baseline] = intervals;
+    // The sampling error of a sampled run's speedups (95 %), beside the
+    // calibration band above; absent when every tile was traced.
+    if (run.sample) j["speedup_sampling_interval_over_" + run.config.baseline] = sampled;
     nlohmann::ordered_json why = nlohmann::ordered_json::object();
     for (std::size_t p = 0; p < run.costs.size(); ++p) {
         const std::string reason = run.no_interval_reason(p);
@@ -262,7 +299,7 @@ Table summary_table(const std::vector<RunResult>& runs) {
         const auto per_ray = [](const MethodRun* m, double v) -> std::string {
             if (!m) return "-";
             if (!m->runnable) return "n/a";
-            return m->frame.rays_traced ? format_sig(v / static_cast<double>(m->frame.rays_traced), 4) : "-";
+            return m->rays() ? format_sig(v / static_cast<double>(m->rays()), 4) : "-";
         };
         const MethodRun* any = nullptr;
         for (const MethodRun& m : r.methods)
@@ -270,7 +307,7 @@ Table summary_table(const std::vector<RunResult>& runs) {
         std::vector<std::string> row{r.sweep_label.empty() ? r.config.name : r.sweep_label,
                                      std::string(kind_name(r.config.kind)),
                                      format_thousands(static_cast<std::int64_t>(r.primitives)),
-                                     any ? format_thousands(static_cast<std::int64_t>(any->frame.rays_traced)) : "-",
+                                     any ? format_thousands(static_cast<std::int64_t>(any->rays())) : "-",
                                      r.costs.empty() ? "-" : r.costs.front().name};
         for (const std::string& n : names) {
             const MethodRun* m = r.find(n);
@@ -279,7 +316,7 @@ Table summary_table(const std::vector<RunResult>& runs) {
         }
         for (const std::string& n : names) {
             const MethodRun* m = r.find(n);
-            row.push_back(per_ray(m, m && m->runnable ? static_cast<double>(m->frame.totals[Event::IsCall]) : 0.0));
+            row.push_back(per_ray(m, m && m->runnable ? static_cast<double>(m->totals()[Event::IsCall]) : 0.0));
         }
         for (const std::string& n : others) {
             const double s = r.speedup(n);
@@ -318,8 +355,8 @@ Table speedup_table(const std::vector<RunResult>& runs) {
                 t.add_row(row);
                 continue;
             }
-            const double rays = static_cast<double>(m.frame.rays_traced);
-            row.push_back(rays > 0 ? format_sig(static_cast<double>(m.frame.totals[Event::IsCall]) / rays, 4) : "-");
+            const double rays = static_cast<double>(m.rays());
+            row.push_back(rays > 0 ? format_sig(static_cast<double>(m.totals()[Event::IsCall]) / rays, 4) : "-");
             const double o = r.memory_overhead_percent(m.method);
             row.push_back(m.method == r.config.baseline ? "0%" : std::isnan(o) ? "-" : format_sig(o, 3) + "%");
             for (std::size_t p = 0; p < r.costs.size(); ++p) {

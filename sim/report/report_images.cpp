@@ -43,7 +43,8 @@ void write_simt_map(const MethodRun& m, const RunResult& run, const std::string&
     o.title = m.method + ": SIMT efficiency of IS rounds";
     o.bar_label = "active lanes / W";
     o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
-                "\nper pixel: over its warps' rounds; grey: no IS round";
+                "\nper pixel: over its warps' rounds; grey: no IS round" +
+                (run.sample ? std::string(" or not traced (sampled run)") : std::string());
     o.colormap = Colormap::Viridis;
     write_png(render_heatmap(eff, HeatmapScale{0.0, 1.0, ScaleKind::Linear}, o).image,
               path_in(dir, "heat_simt_" + m.method + ".png"));
@@ -95,6 +96,21 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
             return static_cast<float>(c[Event::IsCall]);
         }));
     }
+    // A sampled run traced some tiles only: the others are grey (no data),
+    // not zero, and every caption says so.
+    std::string sampled;
+    if (run.sample) {
+        const TileSample& s = *run.sample;
+        for (std::vector<ScalarField>* fields : {&cycles, &calls})
+            for (ScalarField& f : *fields)
+                for (int y = 0; y < f.height; ++y)
+                    for (int x = 0; x < f.width; ++x)
+                        if (!s.traced_pixel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)))
+                            f.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(f.width) +
+                                     static_cast<std::size_t>(x)] = std::numeric_limits<float>::quiet_NaN();
+        sampled = "\nsampled: " + std::to_string(s.traced_tiles()) + " of " + std::to_string(s.tiles()) +
+                  " tiles traced (1/" + std::to_string(s.k()) + ", seed " + std::to_string(s.seed()) + "); grey: not traced";
+    }
     const auto pointers = [](const std::vector<ScalarField>& v) {
         std::vector<const ScalarField*> p;
         for (const auto& f : v) p.push_back(&f);
@@ -109,7 +125,7 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
         o.title = name + ": cycles per pixel (" + cost.name + (warp ? ", warp model)" : ")");
         o.bar_label = "cycles / pixel";
         o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
-                    "\n" + spp + ", common scale across methods";
+                    "\n" + spp + ", common scale across methods" + sampled;
         o.colormap = Colormap::Inferno;
         jobs.push_back([&, i, o, name] {
             write_png(render_heatmap(cycles[i], cycle_scale, o).image, path_in(dir, "heat_cycles_" + name + ".png"));
@@ -133,7 +149,7 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
         o.title = "cycles per pixel, " + bname + " / " + name;
         o.ratio_label = bname + "/" + name;
         o.caption = run.config.name + (run.sweep_label.empty() ? "" : "  " + run.sweep_label) +
-                    "\nred: " + name + " cheaper, blue: " + bname + " cheaper";
+                    "\nred: " + name + " cheaper, blue: " + bname + " cheaper" + sampled;
         jobs.push_back([&, i, o, name] {
             write_png(render_ratio_map(cycles[static_cast<std::size_t>(base_at - traced.begin())], cycles[i], o).image,
                       path_in(dir, "ratio_cycles_" + bname + "_over_" + name + ".png"));

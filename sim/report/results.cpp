@@ -88,7 +88,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
     header.insert(header.end(), axes.begin(), axes.end());
     for (const char* c : {"primitive_kind", "primitive_count", "aabb_over_obb_area", "method", "baseline", "cost_preset",
                           "execution", "memory_preset", "instances", "rays", "cycles", "cycles_per_ray", "speedup",
-                          "speedup_low", "speedup_high", "is_calls", "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent",
+                          "speedup_low", "speedup_high", "sampling_low", "sampling_high", "is_calls", "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent",
                           "reason"})
         header.emplace_back(c);
     std::vector<std::vector<std::string>> rows;
@@ -108,7 +108,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
             for (std::size_t p = 0; p < r.costs.size(); ++p) {
                 std::vector<std::string> row = head;
                 const CostModel& cost = r.costs[p];
-                const std::uint64_t rays = m.runnable ? m.frame.rays_traced : 0;
+                const std::uint64_t rays = m.runnable ? m.rays() : 0;
                 const bool priced = m.runnable && p < m.priced.size() && m.priced[p].supported;
                 const bool base_priced = base && base->runnable && p < base->priced.size() && base->priced[p].supported;
                 const double speedup = m.method == r.config.baseline ? (priced ? 1.0 : NAN) : r.speedup(m.method, p);
@@ -122,14 +122,16 @@ std::string results_csv(const std::vector<RunResult>& runs) {
                 const double overhead = m.method == r.config.baseline ? (m.runnable ? 0.0 : NAN)
                                                                       : r.memory_overhead_percent(m.method);
                 const double cycles = priced ? m.priced[p].total_cycles : NAN;
-                const double calls = m.runnable ? static_cast<double>(m.frame.totals[Event::IsCall]) : NAN;
+                const double calls = m.runnable ? static_cast<double>(m.totals()[Event::IsCall]) : NAN;
                 const auto interval = m.method == r.config.baseline ? std::nullopt : r.speedup_interval(m.method, p);
+                const auto sampled = m.method == r.config.baseline ? std::nullopt : r.sampled_speedup(m.method, p);
                 for (const std::string& c :
                      {text(m.method), text(r.config.baseline), text(cost.name),
                       std::string(cost.execution.warp() ? "warp" : "per_ray"), text(r.memory.name),
                       std::to_string(m.instances), m.runnable ? std::to_string(rays) : "", raw(cycles),
                       priced ? per(cycles, rays) : "", speedup > 0 ? raw(speedup) : "",
-                      interval ? raw((*interval)[0]) : "", interval ? raw((*interval)[1]) : "", raw(calls),
+                      interval ? raw((*interval)[0]) : "", interval ? raw((*interval)[1]) : "",
+                      sampled ? raw(sampled->interval[0]) : "", sampled ? raw(sampled->interval[1]) : "", raw(calls),
                       m.runnable ? per(calls, rays) : "", raw(mem), raw(mem / (1024.0 * 1024.0)), raw(overhead),
                       text(reason)})
                     row.push_back(c);

@@ -80,7 +80,8 @@ Draws make_draws(const std::vector<CostModel>& costs, const UncertaintyOptions& 
 // under r's memory preset. `warp_index` as load_presets returns it; the
 // frame's warp totals are in that order.
 void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
-                  const std::vector<std::size_t>& warp_index, const Draws& draws) {
+                  const std::vector<std::size_t>& warp_index, const Draws& draws,
+                  const std::vector<std::size_t>& pixel_warp_index) {
     m.priced.clear();
     m.warp.clear();
     m.roof.clear();
@@ -105,6 +106,25 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
         m.priced.push_back(std::move(p));
     }
     m.memory = price_memory(m.structures, r.memory, r.config.kind, r.primitives, r.mesh_vertices, r.mesh_triangles);
+    m.sampled.reset();
+    if (!r.sample) return;
+    // A sampled frame: every total scaled to the whole frame, and its
+    // interval from the traced tiles (each warp preset's per-pixel cycles,
+    // pixel_warp_index[k] of the frame's; per-ray presets from the counts).
+    const std::uint32_t k = r.sample->k();
+    std::vector<const std::vector<float>*> warp_pixels(r.costs.size(), nullptr);
+    std::vector<double> totals;
+    for (std::size_t p = 0; p < r.costs.size(); ++p) {
+        scale_priced(m.priced[p], k);
+        scale_warp(m.warp[p], k);
+        for (double& c : m.draw_cycles[p]) c *= k;
+        totals.push_back(m.priced[p].total_cycles);
+        const std::size_t w = p < pixel_warp_index.size() ? pixel_warp_index[p] : SIZE_MAX;
+        if (w == 0) warp_pixels[p] = &m.frame.pixel_warp_cycles;
+        else if (w != SIZE_MAX && w - 1 < m.frame.more_pixel_warp_cycles.size())
+            warp_pixels[p] = &m.frame.more_pixel_warp_cycles[w - 1];
+    }
+    m.sampled = estimate_sampled(m.frame, *r.sample, r.costs, warp_pixels, totals);
 }
 
 std::size_t old_warp_presets(const std::vector<std::size_t>& warp_index) {
@@ -151,6 +171,18 @@ std::optional<std::array<double, 2>> RunResult::speedup_interval(std::string_vie
     for (std::size_t d = 0; d < base->draw_cycles[preset].size(); ++d)
         s.push_back(base->draw_cycles[preset][d] / other->draw_cycles[preset][d]);
     return interval_90(std::move(s), point);
+}
+
+std::optional<SampledEstimate> RunResult::sampled_speedup(std::string_view name, std::size_t preset) const {
+    const double point = speedup(name, preset);
+    const MethodRun* base = baseline();
+    const MethodRun* other = find(name);
+    if (!sample || point <= 0.0 || !base->sampled || !other->sampled || preset >= base->sampled->tile_cycles.size() ||
+        preset >= other->sampled->tile_cycles.size() || base->sampled->tile_cycles[preset].empty() ||
+        other->sampled->tile_cycles[preset].empty())
+        return std::nullopt;
+    return centred(estimate_ratio(base->sampled->tile_cycles[preset], other->sampled->tile_cycles[preset], sample->k()),
+                   point);
 }
 
 std::string RunResult::no_interval_reason(std::size_t preset) const {
@@ -201,6 +233,12 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
 
     RayWorkload frame = make_frame(c.workload, geometry_bounds(geometry));
     r.camera = frame.camera;
+    // The sample's tiles are the warp presets' tiles (8 x 4 without one):
+    // the same for every method, thread count and band.
+    if (frame.from_camera)
+        r.sample = TileSample::make(frame.camera.width, frame.camera.height,
+                                    r.warp_grouping ? r.warp_grouping->tile_width : 8,
+                                    r.warp_grouping ? r.warp_grouping->tile_height : 4, c.sampling);
     bool rays_written = false;
     for (const std::string& name : c.methods) {
         throw_if_interrupted();
@@ -245,6 +283,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
         fo.record_warps = (ctx.record_warps || !c.break_even.empty()) && r.warp_grouping.has_value();
         fo.band = ctx.band;
         fo.bands = ctx.bands;
+        fo.sample = r.sample ? &*r.sample : nullptr;
         m.frame = ctx.frame_source ? ctx.frame_source(name) : built->run(geometry, frame, c.trace, fo);
         if (!ctx.out_dir.empty() && fo.record_rays) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
@@ -261,7 +300,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
             m.frame.hits.clear();
             m.frame.hits.shrink_to_fit();
         }
-        price_method(m, r, method, warp_index, draws);
+        price_method(m, r, method, warp_index, draws, warp_index);
         r.methods.push_back(std::move(m));
     }
     r.total_seconds = seconds_since(t_start);
@@ -342,7 +381,17 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
             }
         }
         m.frame.warp = std::move(warp);
-        price_method(m, r, method, warp_index, draws);
+        // The traced frame's per-pixel warp cycles are its own presets':
+        // a preset's are found by name, else it has no sampling interval.
+        std::vector<std::size_t> pixel_warp_index(r.costs.size(), SIZE_MAX);
+        for (std::size_t k = 0; k < r.costs.size(); ++k)
+            for (std::size_t j = 0, tw = 0; j < traced.costs.size(); ++j) {
+                if (!traced.costs[j].execution.warp()) continue;
+                if (warp_index[k] != SIZE_MAX && traced.config.cost_presets[j] == c.cost_presets[k])
+                    pixel_warp_index[k] = tw;
+                ++tw;
+            }
+        price_method(m, r, method, warp_index, draws, pixel_warp_index);
     }
     r.total_seconds = seconds_since(t_start);
     return r;

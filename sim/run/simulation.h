@@ -10,6 +10,7 @@
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/memory_model.h"
 #include "sim/run/area_stats.h"
+#include "sim/run/sampled_run.h"
 #include "sim/run/work_estimate.h"
 
 #include <array>
@@ -37,6 +38,14 @@ struct MethodRun {
     // uncertainty block (empty: the preset has none, or draws are off).
     std::vector<std::vector<double>> draw_cycles;
     MemoryBreakdown memory;
+    // Sampled runs (RunResult::sample): the estimates over the whole frame.
+    // `priced`, `warp` and `draw_cycles` are already scaled to it; `frame`
+    // holds what was traced (the sampled tiles only).
+    std::optional<SampledMethod> sampled;
+
+    // The event totals and rays over the whole frame: traced, or estimated.
+    [[nodiscard]] const EventTotals& totals() const { return sampled ? sampled->totals : frame.totals; }
+    [[nodiscard]] std::uint64_t rays() const { return sampled ? sampled->rays : frame.rays_traced; }
 };
 
 // The SM roofline of `method`'s pipeline under `cost` in run `r` (disabled
@@ -57,6 +66,7 @@ struct RunResult {
     Camera camera;                     // resolved camera (camera workloads)
     std::vector<MethodRun> methods;
     std::size_t mesh_vertices = 0, mesh_triangles = 0;  // for memory pricing without the scene
+    std::optional<TileSample> sample;  // the traced tiles of a sampled run (config.sampling)
     bool repriced = false;             // priced from another point's trace (reprice_run)
     double load_seconds = 0.0, convert_seconds = 0.0, total_seconds = 0.0;
 
@@ -73,6 +83,10 @@ struct RunResult {
     // preset's cost draws (cost_uncertainty.h); nullopt without draws or speedup.
     [[nodiscard]] std::optional<std::array<double, 2>> speedup_interval(std::string_view method,
                                                                         std::size_t preset = 0) const;
+    // Sampled runs: speedup(method, preset) with its 95 % sampling interval
+    // (the ratio estimator over the same tiles); nullopt when not sampled.
+    [[nodiscard]] std::optional<SampledEstimate> sampled_speedup(std::string_view method,
+                                                                 std::size_t preset = 0) const;
     // Why preset `preset` gives no intervals ("" when it does).
     [[nodiscard]] std::string no_interval_reason(std::size_t preset) const;
     // Total memory of `method` over the baseline's, in percent; NaN when not available.
