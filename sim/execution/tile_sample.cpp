@@ -24,7 +24,20 @@ std::optional<TileSample> TileSample::make(int width, int height, int tile_w, in
     s.tiles_y_ = static_cast<std::uint32_t>((height + tile_h - 1) / tile_h);
     const std::size_t tiles = static_cast<std::size_t>(s.tiles_x_) * s.tiles_y_;
     const std::uint64_t stratum = 2ull * k;  // L
-    const std::size_t strata = static_cast<std::size_t>((tiles + stratum - 1) / stratum);
+    // A stratum is a block of bw x bh = L tiles, as square in pixels as L's
+    // divisors allow (bh the divisor nearest sqrt(L tile_w / tile_h)):
+    // compact strata leave less spread inside them than strips of a row.
+    std::uint64_t bh = 1;
+    const double ideal = std::sqrt(static_cast<double>(stratum) * tile_w / tile_h);
+    for (std::uint64_t d = 1; d <= stratum; ++d)
+        if (stratum % d == 0 && std::abs(static_cast<double>(d) - ideal) < std::abs(static_cast<double>(bh) - ideal))
+            bh = d;
+    const std::uint64_t bw = stratum / bh;
+    const std::uint64_t blocks_x = (s.tiles_x_ + bw - 1) / bw, blocks_y = (s.tiles_y_ + bh - 1) / bh;
+    s.block_w_ = static_cast<std::uint32_t>(bw);
+    s.block_h_ = static_cast<std::uint32_t>(bh);
+    s.blocks_x_ = static_cast<std::uint32_t>(blocks_x);
+    const std::size_t strata = static_cast<std::size_t>(blocks_x * blocks_y);
     s.traced_.assign(tiles, 0);
     s.slots_.reserve(strata * kPerStratum);
     const std::uint64_t key = mix64(o.seed ^ 0x5A4D504C45ull);  // "SAMPLE": apart from the path tracer's streams
@@ -37,11 +50,14 @@ std::optional<TileSample> TileSample::make(int width, int height, int tile_w, in
         std::uint64_t b = mix64(r + 0x9E3779B97F4A7C15ull) % (stratum - 1);
         if (b >= a) ++b;
         for (const std::uint64_t pos : {std::min(a, b), std::max(a, b)}) {
-            const std::uint64_t tile = h * stratum + pos;
-            if (tile >= tiles) {
+            // Position pos of block h, row-major in the block; past the
+            // frame's edge it is a padding tile.
+            const std::uint64_t tx = (h % blocks_x) * bw + pos % bw, ty = (h / blocks_x) * bh + pos / bw;
+            if (tx >= s.tiles_x_ || ty >= s.tiles_y_) {
                 s.slots_.push_back(kEmpty);
                 continue;
             }
+            const std::uint64_t tile = ty * s.tiles_x_ + tx;
             s.slots_.push_back(static_cast<std::uint32_t>(tile));
             s.traced_[tile] = 1;
             ++s.traced_count_;

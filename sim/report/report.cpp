@@ -47,9 +47,11 @@ nlohmann::ordered_json sampling_json(const RunResult& run) {
             {"tiles_traced", s.traced_tiles()},
             {"strata", s.strata()},
             {"tiles_per_stratum", 2 * s.k()},
+            {"stratum_tiles", {s.block_width(), s.block_height()}},
             {"confidence", 0.95},
-            {"method", "stratified sample of warp tiles, two per stratum of " + std::to_string(2 * s.k()) +
-                           " consecutive tiles (row-major); totals are " + std::to_string(s.k()) +
+            {"method", "stratified sample of warp tiles, two per stratum, a block of " +
+                           std::to_string(s.block_width()) + " x " + std::to_string(s.block_height()) +
+                           " tiles; totals are " + std::to_string(s.k()) +
                            " x the traced tiles' sums; speedups are ratio estimators over the same tiles for every "
                            "method; intervals are 95 % (Student t, Satterthwaite's degrees of freedom): "
                            "docs/sampling.md"},

@@ -104,7 +104,11 @@ TEST_CASE("tile sample: two tiles per stratum of 2k, each tile with probability 
     CHECK(s.tiles_x() == 101);
     CHECK(s.tiles_y() == 201);
     CHECK(s.tiles() == 101u * 201u);
-    CHECK(s.strata() == (s.tiles() + 31) / 32);
+    // Blocks of 4 x 8 tiles (32 x 32 pixels): 26 x 26 of them.
+    CHECK(s.block_width() == 4);
+    CHECK(s.block_height() == 8);
+    CHECK(s.blocks_x() == 26);
+    CHECK(s.strata() == 26u * 26u);
     REQUIRE(s.slots().size() == 2 * s.strata());
     std::size_t traced = 0;
     for (std::uint32_t ty = 0; ty < s.tiles_y(); ++ty)
@@ -113,12 +117,18 @@ TEST_CASE("tile sample: two tiles per stratum of 2k, each tile with probability 
     for (std::size_t h = 0; h < s.strata(); ++h) {
         const std::uint32_t a = s.slots()[2 * h], b = s.slots()[2 * h + 1];
         CAPTURE(h);
-        // Real tiles of the stratum, distinct; padding (kEmpty) only in the
-        // last stratum, after its real tiles (the slots are in order).
-        if (a != TileSample::kEmpty) CHECK(a / 32 == h);
-        if (b != TileSample::kEmpty) CHECK(b / 32 == h);
-        if (b != TileSample::kEmpty) CHECK(a < b);
-        if (a == TileSample::kEmpty || b == TileSample::kEmpty) CHECK(h == s.strata() - 1);
+        const std::uint32_t bx = static_cast<std::uint32_t>(h) % 26, by = static_cast<std::uint32_t>(h) / 26;
+        // Real tiles of the stratum's block, distinct and in order; padding
+        // (kEmpty) only in the blocks over the right or bottom edge.
+        for (const std::uint32_t t : {a, b}) {
+            if (t == TileSample::kEmpty) {
+                CHECK((bx == 25 || by == 25));
+                continue;
+            }
+            CHECK(t % s.tiles_x() / 4 == bx);
+            CHECK(t / s.tiles_x() / 8 == by);
+        }
+        if (a != TileSample::kEmpty && b != TileSample::kEmpty) CHECK(a != b);
     }
     // The same seed draws the same tiles; another seed others.
     CHECK(TileSample::make(801, 803, 8, 4, {0.0625, 7})->slots() == s.slots());
@@ -127,7 +137,7 @@ TEST_CASE("tile sample: two tiles per stratum of 2k, each tile with probability 
     // 4,000 seeds each of the 32 positions is drawn about 250 times.
     std::vector<int> drawn(32, 0);
     for (std::uint64_t seed = 0; seed < 4000; ++seed) {
-        const TileSample t = *TileSample::make(256, 4, 8, 4, {0.0625, seed});  // one stratum of 32 tiles
+        const TileSample t = *TileSample::make(32, 32, 8, 4, {0.0625, seed});  // one stratum of 4 x 8 tiles
         REQUIRE(t.strata() == 1);
         for (const std::uint32_t tile : t.slots()) ++drawn[tile];
     }
