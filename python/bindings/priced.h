@@ -12,8 +12,8 @@ namespace rtc::py_bind {
 struct Priced {
     PricedRun run;
     std::optional<WarpTotals> warp;  // warp presets: the waves' figures
-    Roofline roof;                   // the SM they were priced on (sm_model.h)
     int warp_width = 32;
+    Roofline roof;                   // the SM they were priced on (sm_model.h)
 };
 
 }  // namespace rtc::py_bind
