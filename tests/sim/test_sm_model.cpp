@@ -44,7 +44,7 @@ TEST_CASE("SM: resident warps follow CC 7.5's register rule (cuda_occupancy.h's 
     CHECK(resident_warps(sm, 88, 32) == 23);
 }
 
-TEST_CASE("SM: the shipped turing-sm names every pipeline; its roofline per program") {
+TEST_CASE("SM: the shipped turing-sm names every pipeline, with its roofline per program") {
     const CostModel m = load_cost_model(kHw + "turing-sm.json");
     REQUIRE(m.execution.sm.enabled);
     CHECK(roofline(m.execution.sm, "", 32).warps == 20);
@@ -57,7 +57,7 @@ TEST_CASE("SM: the shipped turing-sm names every pipeline; its roofline per prog
     CHECK_FALSE(load_cost_model(kHw + "turing-calibrated.json").execution.sm.enabled);
 }
 
-TEST_CASE("SM: a frame is its binding term; without an SM the lone-wave sum") {
+TEST_CASE("SM: a frame is its binding term, and without an SM the lone-wave sum") {
     WarpTotals w;
     w.shader = 100, w.rt = 400, w.handoff = 300, w.programs = 50, w.rt_lane_sum = 1600;
     CHECK(w.terms(Roofline{}).cycles == 850.0);
