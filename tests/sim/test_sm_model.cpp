@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
 
@@ -23,6 +25,19 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kHw = std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/";
+
+// A tiny capsule bundle, ref and obb, priced under `costs` (preset paths).
+nlohmann::json capsule_bundle(const std::vector<std::string>& costs, int count) {
+    return {{"name", "sm"},
+            {"scene", {{"type", "bundle"}, {"count", count}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
+            {"primitives", {{"kind", "capsule"}}},
+            {"methods", {"ref", "obb"}},
+            {"cost", costs},
+            {"memory", kHw + "memory-optix7.json"},
+            {"workload",
+             {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
+            {"output", {{"images", false}, {"arrays", false}}}};
+}
 
 }  // namespace
 
@@ -93,32 +108,15 @@ TEST_CASE("SM: a preset's sm block is read strictly, and a run's pipeline is che
     no_capsule["execution"]["sm"]["registers"]["value"].erase("capsule");
     const std::string path = (dir / "no_capsule.json").string();
     std::ofstream(path) << no_capsule.dump(1);
-    const nlohmann::json config = {
-        {"name", "sm"},
-        {"scene", {{"type", "bundle"}, {"count", 30}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
-        {"primitives", {{"kind", "capsule"}}},
-        {"methods", {"ref", "obb"}},
-        {"cost", {path}},
-        {"memory", kHw + "memory-optix7.json"},
-        {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
-        {"output", {{"images", false}, {"arrays", false}}}};
-    CHECK_THROWS_WITH_AS((void)parse_run_config(config, (dir / "c.json").string()),
+    CHECK_THROWS_WITH_AS((void)parse_run_config(capsule_bundle({path}, 30), (dir / "c.json").string()),
                          doctest::Contains("/cost/0"), InputError);
 }
 
 TEST_CASE("SM: a run's cycles are its frame's binding term, and the effective counts price it exactly") {
     const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "sm_model_test";
     fs::create_directories(dir);
-    const nlohmann::json config = {
-        {"name", "sm"},
-        {"scene", {{"type", "bundle"}, {"count", 60}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
-        {"primitives", {{"kind", "capsule"}}},
-        {"methods", {"ref", "obb"}},
-        {"cost", {kHw + "turing-sm.json", kHw + "turing-calibrated.json"}},
-        {"memory", kHw + "memory-optix7.json"},
-        {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
-        {"output", {{"images", false}, {"arrays", false}}}};
-    const RunConfig c = parse_run_config(config, (dir / "c.json").string());
+    const RunConfig c = parse_run_config(capsule_bundle({kHw + "turing-sm.json", kHw + "turing-calibrated.json"}, 60),
+                                         (dir / "c.json").string());
     RunContext ctx;
     ctx.quiet = true;
     ctx.threads = 1;
