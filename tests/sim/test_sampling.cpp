@@ -314,10 +314,10 @@ TEST_CASE("sampled run: the same at any thread count, and sharded and merged") {
 }
 
 TEST_CASE("sampled run: config and CLI errors, and the fraction suggested for a target error") {
-    CHECK_THROWS_WITH_AS(parse_cli({kTiny, "--sample", "0"}), doctest::Contains("--sample: expected a fraction"),
+    CHECK_THROWS_WITH_AS((void)parse_cli({kTiny, "--sample", "0"}), doctest::Contains("--sample: expected a fraction"),
                          InputError);
-    CHECK_THROWS_WITH_AS(parse_cli({kTiny, "--sample", "1.5"}), doctest::Contains("--sample"), InputError);
-    CHECK_THROWS_WITH_AS(parse_cli({kTiny, "--target-error", "0.02"}), doctest::Contains("goes with --estimate"),
+    CHECK_THROWS_WITH_AS((void)parse_cli({kTiny, "--sample", "1.5"}), doctest::Contains("--sample"), InputError);
+    CHECK_THROWS_WITH_AS((void)parse_cli({kTiny, "--target-error", "0.02"}), doctest::Contains("goes with --estimate"),
                          InputError);
     CHECK_THROWS_WITH_AS((void)plan_config_text(kTiny, read_text_file(kTiny), {"sampling.fraction=2"}, {}),
                          doctest::Contains("/sampling/fraction"), InputError);
