@@ -204,8 +204,8 @@ def table1_predictions(runs, preset):
     relative to capsules on the same model (the paper's: capsule rays/s over
     the kind's)."""
     lines = ["| model | kind | ref SM-cycles/ray (paper) | ref cycles/ray vs capsule (paper) | "
-             "obb speedup [90 % band] | paper | error | paper inside the band |",
-             "|---|---|---:|---:|---:|---:|---:|---|"]
+             "obb speedup [90 % band] | sampling (95 %) | paper | error | paper inside the band |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---|"]
     by_model = {}
     for r in runs:
         by_model.setdefault(model_name(r), {})[kind_label(r)] = r
@@ -228,6 +228,8 @@ def table1_predictions(runs, preset):
                 shown += f" ({r.data['methods']['obb'].get('reason', 'not runnable')})"
             if s and interval:
                 shown += f" [{interval[0]:.2f}-{interval[1]:.2f}]"
+            sampled = r.sampling_interval("obb", preset) if s else None
+            sampling = f"+/-{100 * max(s - sampled[0], sampled[1] - s) / s:.1f} %" if sampled else "traced in full"
             error = f"{100 * (s / target - 1):+.1f} %" if s and target else ""
             within = ""
             if interval and target:
@@ -240,12 +242,14 @@ def table1_predictions(runs, preset):
             ratio = f"{ref_ratio:.2f}" if ref_ratio else "n/a"
             if paper_ratio:
                 ratio += f" ({paper_ratio:.2f})"
-            lines.append(f"| {model} | {kind} | {absolute} | {ratio} | {shown} | "
+            lines.append(f"| {model} | {kind} | {absolute} | {ratio} | {shown} | {sampling if s else ''} | "
                          f"{f'{target:.2f}x' if target else ''} | {error} | {within} |")
     lines.append("")
     lines.append(f"Paper values inside the 90 % calibration band: {inside} of {counted} cells. The band is "
                  "the spread of the prediction under the fit's parameters drawn from its covariance "
-                 "(truncated to the bounds); it says nothing of model-structure error. SM-cycles per ray: "
+                 "(truncated to the bounds); it says nothing of model-structure error. Sampling: the half-width of "
+                 "the speedup's 95 % sampling interval when the run traced a sample of its warp tiles "
+                 "(docs/sampling.md). SM-cycles per ray: "
                  f"the paper's rays/s on {SMS} SMs at {BOOST_HZ / 1e9:.2f} GHz, beside the model's frame "
                  "cycles (on one SM's roofline) per ray.")
     lines.append("")

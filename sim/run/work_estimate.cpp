@@ -4,6 +4,7 @@
 #include "core/input_error.h"
 #include "core/sinks.h"
 #include "sim/config/run_config.h"
+#include "sim/execution/tile_sample.h"
 #include "scenes/convert.h"
 #include "sim/methods/method.h"
 
@@ -185,6 +186,12 @@ WorkEstimate estimate_config_work(const RunConfig& c) {
         e.rays_detail = std::to_string(w.width) + " x " + std::to_string(w.height) + " pixels x " +
                         std::to_string(w.spp) + " spp x " + count_text(per_path) + " rays per path x " +
                         count_text(methods) + " method(s)";
+        // A sampled run traces 1/k of the tiles: 1/k of the rays (and of the
+        // recorded rays and hits below); the per-pixel arrays stay full-frame.
+        if (const std::uint32_t k = sample_k(c.sampling.fraction); k > 1) {
+            e.rays /= k;
+            e.rays_detail += " x 1/" + std::to_string(k) + " of the tiles (sampled)";
+        }
     }
     const double pixel_bytes = pixels * kBytesPerPixel * methods;
     const double recorded = (c.output.write_rays || c.output.write_hits) ? e.rays * kBytesPerRecordedRay : 0.0;

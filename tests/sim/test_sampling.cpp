@@ -10,6 +10,7 @@
 #include "sim/app/run_all.h"
 #include "sim/app/simulate_main.h"
 #include "sim/execution/tile_sample.h"
+#include "sim/run/work_estimate.h"
 #include "sim/util/json_file.h"
 
 #include <doctest/doctest.h>
@@ -331,6 +332,20 @@ TEST_CASE("sampled run: config and CLI errors, and the fraction suggested for a 
     CHECK(suggested_k(16, 0.01, 0.02) == 61);  // 1 + 15 x 4 = 61: a smaller sample is enough
     CHECK(suggested_k(64, 0.2, 0.02) == 1);    // needs more than every tile: trace it whole
     CHECK(suggested_k(64, 0.0, 0.02) == 64);   // no spread seen: no smaller sample than the pilot's
+}
+
+TEST_CASE("sampled run: the work estimate (and --max-rays) counts the traced tiles' rays") {
+    const RunPlan full = plan_config_text(kTiny, read_text_file(kTiny), {}, {});
+    const RunPlan sampled = plan_config_text(kTiny, read_text_file(kTiny), {"sampling.fraction=0.0625"}, {});
+    const WorkEstimate f = estimate_config_work(full.parsed.at(0));
+    const WorkEstimate s = estimate_config_work(sampled.parsed.at(0));
+    REQUIRE(f.rays > 0);
+    CHECK(s.rays == doctest::Approx(f.rays / 16));
+    CHECK(s.rays_detail.find("1/16 of the tiles") != std::string::npos);
+    // tiny.json records its rays and hits: only the traced ones are kept;
+    // the per-pixel arrays stay full-frame.
+    CHECK(s.memory_bytes < f.memory_bytes);
+    CHECK(s.memory_bytes > f.memory_bytes - 15.0 / 16 * f.rays * 64);
 }
 
 }  // namespace RTCSIM_TEST_FILE
