@@ -162,7 +162,7 @@ def price(counts, preset):
         raise ValueError(f"counts: expected a last axis of {len(_rtcsim.EVENT_NAMES)} events, got {counts.shape}")
     if counts.ndim == 1:
         return _rtcsim.price_totals(counts.astype(np.uint64, copy=False), model)
-    return counts @ model.cycles
+    return _rtcsim.price_pixels(counts, model)  # the CLI's per-pixel cycles
 
 
 def load_scene(scene, base=None):

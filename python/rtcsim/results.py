@@ -121,7 +121,7 @@ class Result(Report):
                 raise ValueError(f"per-pixel warp cycles are kept for the first warp preset only "
                                  f"({self.cost_presets[self._run.warp_preset]})")
             return m.pixel_warp_cycles
-        return m.pixel_counts @ cost.cycles
+        return _rtcsim.price_pixels(m.pixel_counts, cost)  # as the CLI's heat maps and cycles_*.npy
 
     def pixel_events(self, method, event):
         return self.method(method).pixel_events(event)
