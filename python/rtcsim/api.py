@@ -138,7 +138,8 @@ def price(counts, preset):
     """Cycles of counts under a preset, without tracing.
 
     counts: a MethodResult (its totals; under a warp preset its recorded
-        waves), a {event: count} dict, event totals (EVENT_NAMES order), or
+        waves; a sampled run's scaled to the whole frame, as report.json's
+        totals are), a {event: count} dict, event totals (EVENT_NAMES order), or
         per-pixel counts (..., events), which give cycles per pixel.
     preset: a CostModel, a preset file or a preset name.
     Returns a PricedRun, or an array of cycles for per-pixel counts.

@@ -51,7 +51,8 @@ class MethodResult:
 
     def price(self, preset):
         """Re-prices this method's counts under a preset (name, path or
-        CostModel) without tracing; warp presets re-price the recorded waves."""
+        CostModel) without tracing; warp presets re-price the recorded waves.
+        A sampled run's are scaled to the whole frame, as the CLI's totals."""
         return self._m.price(load_cost_model(preset))
 
     def priced_by_preset(self):
