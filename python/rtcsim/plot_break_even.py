@@ -105,7 +105,7 @@ def break_even_grid(result, spec):
     return _rtcsim.break_even_grid(run, json.dumps(spec), result.file)
 
 
-def _grid_figure(result, grid, title, band=None):
+def _grid_figure(grid, title, band=None):
     """A live map's figure: hatched where the grid's own band (or, given,
     `band`: the CLI's cells of the same grid) leaves the winner in doubt."""
     doubt, draws = (grid["in_doubt"], grid["draws"]) if grid["draws"] else (None, 0)
@@ -140,7 +140,7 @@ def break_even(result, x_events, y_events, x_range=(1, 100), y_range=(1, 100), p
     if methods is not None:
         spec["methods"] = list(methods)
     grid = break_even_grid(result, spec)
-    return _grid_figure(result, grid, title or f"{result.label}: fastest method (other costs: {result.cost_presets[p]})",
+    return _grid_figure(grid, title or f"{result.label}: fastest method (other costs: {result.cost_presets[p]})",
                         band=band)
 
 
@@ -173,6 +173,6 @@ def break_even_maps(result, directory=None):
             out[spec["name"]] = break_even_cells(path, title=f"{result.label}: {spec['name']} ({spec['preset']})",
                                                  mark=(mark["x"], mark["y"]) if mark else None)
         else:  # the config's own map, every key of it (scale axes, methods) as the CLI reads it
-            out[spec["name"]] = _grid_figure(result, break_even_grid(result, spec),
+            out[spec["name"]] = _grid_figure(break_even_grid(result, spec),
                                              f"{result.label}: {spec['name']} ({spec['preset']})")
     return out

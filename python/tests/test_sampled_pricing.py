@@ -33,7 +33,8 @@ def sampled():
 @pytest.mark.parametrize("presets", [TRACED, OTHERS], ids=["traced", "others"])
 def test_price_of_a_sampled_run_is_the_cli_total(simulate, sampled, tmp_path, presets):
     report = cli_report(simulate, tmp_path / "cli", presets)
-    assert report["sampling"]["fraction"] == FRACTION and report["sampling"]["tiles_traced"] < report["sampling"]["tiles"]
+    sampling = report["sampling"]
+    assert sampling["fraction"] == FRACTION and sampling["tiles_traced"] < sampling["tiles"]
     for name in ("ref", "obb"):
         for preset in presets:
             want = report["methods"][name]["cycles"][preset]
@@ -48,4 +49,5 @@ def test_price_of_a_sampled_run_is_the_cli_total(simulate, sampled, tmp_path, pr
                 for unit, cycles in want["warp"]["breakdown"].items():
                     assert got.warp[unit] == pytest.approx(cycles, rel=1e-12), unit
             if preset in TRACED:  # and the run's own pricing of it
-                assert got.total_cycles == pytest.approx(sampled[name].priced_by_preset()[preset].total_cycles, rel=1e-12)
+                own = sampled[name].priced_by_preset()[preset]
+                assert got.total_cycles == pytest.approx(own.total_cycles, rel=1e-12)
