@@ -101,14 +101,22 @@ void bind_cost(py::module_& m) {
                       [](CostModel& c, const py::array_t<double, py::array::forcecast>& v) {
                           if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != kEventCount)
                               throw std::invalid_argument("expected one cost per event");
-                          for (std::size_t i = 0; i < kEventCount; ++i) {
+                          for (std::size_t i = 0; i < kEventCount; ++i)
                               if (!std::isfinite(v.at(i)) || v.at(i) < 0.0)
                                   throw std::invalid_argument("cost of " + std::string(kEventNames[i]) +
                                                               " must be finite and >= 0");
-                              c.cycles[i] = v.at(i);
-                          }
+                          // As a break-even axis: a cost made of others (sum_of)
+                          // that is set to another value is that value from now
+                          // on; the other sums follow their terms' new costs.
+                          std::erase_if(c.composed, [&](const ComposedCost& k) {
+                              const auto i = static_cast<std::size_t>(k.target);
+                              return v.at(i) != c.cycles[i];
+                          });
+                          for (std::size_t i = 0; i < kEventCount; ++i) c.cycles[i] = v.at(i);
+                          c.settle();
                       },
-                      "Cycles per event, in EVENT_NAMES order (a copy; assign a whole array to change).")
+                      "Cycles per event, in EVENT_NAMES order (a copy; assign a whole array to change). A "
+                      "cost defined as a sum of others (sum_of) follows its terms unless assigned a new value.")
         .def_property_readonly("sources", [](const CostModel& c) {
             return std::vector<std::string>(c.source.begin(), c.source.end());
         }, "Provenance of each cost, in EVENT_NAMES order.")
