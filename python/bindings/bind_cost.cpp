@@ -6,8 +6,10 @@
 
 #include "sim/util/json_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace rtc::py_bind {
 
@@ -63,6 +65,27 @@ EventTotals totals_from(const py::array_t<std::uint64_t, py::array::c_style | py
     return t;
 }
 
+// Cycles of each row of `counts` (..., events) under the per-ray model:
+// `price_row` prices one row of `Counts`. Returns the (...) array.
+template <class Counts, class Scalar, int Flags, class PriceRow>
+py::array_t<double> price_rows(const py::array_t<Scalar, Flags>& counts, PriceRow price_row) {
+    if (counts.ndim() < 1 || static_cast<std::size_t>(counts.shape(counts.ndim() - 1)) != kEventCount)
+        throw std::invalid_argument("expected a last axis of one count per event (" + std::to_string(kEventCount) +
+                                    " values in EVENT_NAMES order)");
+    const std::vector<py::ssize_t> shape(counts.shape(), counts.shape() + counts.ndim() - 1);
+    py::array_t<double> out(shape);
+    const auto rows = static_cast<std::size_t>(out.size());
+    const Scalar* in = counts.data();
+    double* cycles = out.mutable_data();
+    py::gil_scoped_release release;
+    Counts row;
+    for (std::size_t r = 0; r < rows; ++r) {
+        std::copy(in + r * kEventCount, in + (r + 1) * kEventCount, row.n.begin());
+        cycles[r] = price_row(row);
+    }
+    return out;
+}
+
 }  // namespace
 
 void bind_cost(py::module_& m) {
@@ -78,14 +101,22 @@ void bind_cost(py::module_& m) {
                       [](CostModel& c, const py::array_t<double, py::array::forcecast>& v) {
                           if (v.ndim() != 1 || static_cast<std::size_t>(v.shape(0)) != kEventCount)
                               throw std::invalid_argument("expected one cost per event");
-                          for (std::size_t i = 0; i < kEventCount; ++i) {
+                          for (std::size_t i = 0; i < kEventCount; ++i)
                               if (!std::isfinite(v.at(i)) || v.at(i) < 0.0)
                                   throw std::invalid_argument("cost of " + std::string(kEventNames[i]) +
                                                               " must be finite and >= 0");
-                              c.cycles[i] = v.at(i);
-                          }
+                          // As a break-even axis: a cost made of others (sum_of)
+                          // that is set to another value is that value from now
+                          // on; the other sums follow their terms' new costs.
+                          std::erase_if(c.composed, [&](const ComposedCost& k) {
+                              const auto i = static_cast<std::size_t>(k.target);
+                              return v.at(i) != c.cycles[i];
+                          });
+                          for (std::size_t i = 0; i < kEventCount; ++i) c.cycles[i] = v.at(i);
+                          c.settle();
                       },
-                      "Cycles per event, in EVENT_NAMES order (a copy; assign a whole array to change).")
+                      "Cycles per event, in EVENT_NAMES order (a copy; assign a whole array to change). A "
+                      "cost defined as a sum of others (sum_of) follows its terms unless assigned a new value.")
         .def_property_readonly("sources", [](const CostModel& c) {
             return std::vector<std::string>(c.source.begin(), c.source.end());
         }, "Provenance of each cost, in EVENT_NAMES order.")
@@ -129,6 +160,20 @@ void bind_cost(py::module_& m) {
         return p;
     }, py::arg("counts"), py::arg("model"),
           "Per-ray model: cycles = sum(count[e] * cost[e]) of event totals (EVENT_NAMES order).");
+
+    // Per pixel (or per ray), the per-ray model by the CLI's own call: the
+    // cycles of its heat maps and cycles_<method>_<preset>.npy arrays.
+    m.def("price_pixels", [](const py::array_t<std::uint32_t, py::array::c_style>& counts, const CostModel& model) {
+        return price_rows<RayCounts>(counts, [&](const RayCounts& c) { return price_cycles(c, model); });
+    }, py::arg("counts"), py::arg("model"));
+    // Counts of other types (a sum of pixels may not fit 32 bits): the same
+    // products summed in the same order (price(), as for a frame's totals).
+    m.def("price_pixels", [](const py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>& counts,
+                             const CostModel& model) {
+        return price_rows<EventTotals>(counts, [&](const EventTotals& t) { return price(t, model).total_cycles; });
+    }, py::arg("counts"), py::arg("model"),
+          "Per-ray model: the cycles of each row of counts (..., events), e.g. per-pixel counts (H, W, events): "
+          "an (H, W) float64 array, as the CLI's per-pixel cycles.");
 }
 
 }  // namespace rtc::py_bind

@@ -6,6 +6,7 @@
 #include "priced.h"
 
 #include "sim/methods/method.h"
+#include "sim/run/sampled_run.h"  // scale_priced, scale_warp
 
 #include <stdexcept>
 
@@ -58,7 +59,8 @@ py::dict structures_dict(const StructureCounts& s) {
 
 // `model` applied to the method's counts; under a warp preset, to its
 // recorded waves (the run must have been traced with record_warps and the
-// preset must group rays as the run did).
+// preset must group rays as the run did). A sampled run's are scaled to the
+// whole frame, as the run's own presets are.
 Priced reprice(const MethodHandle& h, const CostModel& model) {
     const MethodRun& m = h.method();
     if (!m.runnable) throw std::invalid_argument(m.method + " was not run: " + m.reason);
@@ -80,6 +82,14 @@ Priced reprice(const MethodHandle& h, const CostModel& model) {
     }
     if (const MethodEntry* e = find_method(m.method)) p.run.missing_feature = model.missing_feature(e->info.needs);
     p.run.supported = p.run.missing_feature.empty();
+    // A sampled run traced 1 / k of the tiles: scaled to the whole frame by
+    // the calls, and in the order, the run's own pricing used (price_method,
+    // sim/run/simulation.cpp), so the totals are report.json's.
+    if (h.run->sample) {
+        const std::uint32_t k = h.run->sample->k();
+        scale_priced(p.run, k);
+        if (p.warp) scale_warp(*p.warp, k);
+    }
     return p;
 }
 

@@ -66,5 +66,6 @@ void bind_run(py::module_& m);
 void bind_method(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_calibrate(py::module_& m);
+void bind_break_even(py::module_& m);
 
 }  // namespace rtc::py_bind

@@ -88,4 +88,5 @@ PYBIND11_MODULE(_rtcsim, m) {
     bind_method(m);
     bind_scene(m);
     bind_calibrate(m);
+    bind_break_even(m);
 }

@@ -138,7 +138,8 @@ def price(counts, preset):
     """Cycles of counts under a preset, without tracing.
 
     counts: a MethodResult (its totals; under a warp preset its recorded
-        waves), a {event: count} dict, event totals (EVENT_NAMES order), or
+        waves; a sampled run's scaled to the whole frame, as report.json's
+        totals are), a {event: count} dict, event totals (EVENT_NAMES order), or
         per-pixel counts (..., events), which give cycles per pixel.
     preset: a CostModel, a preset file or a preset name.
     Returns a PricedRun, or an array of cycles for per-pixel counts.
@@ -162,7 +163,7 @@ def price(counts, preset):
         raise ValueError(f"counts: expected a last axis of {len(_rtcsim.EVENT_NAMES)} events, got {counts.shape}")
     if counts.ndim == 1:
         return _rtcsim.price_totals(counts.astype(np.uint64, copy=False), model)
-    return counts @ model.cycles
+    return _rtcsim.price_pixels(counts, model)  # the CLI's per-pixel cycles
 
 
 def load_scene(scene, base=None):

@@ -312,7 +312,7 @@ def render(result, exposure=1.0, title=None):
 
 
 # Break-even maps (with the calibration's band): rtcsim/plot_break_even.py.
-from .plot_break_even import break_even, break_even_cells, break_even_maps, in_doubt  # noqa: E402,F401
+from .plot_break_even import break_even, break_even_cells, break_even_grid, break_even_maps, in_doubt  # noqa: E402,F401
 
 
 # -- python3 -m rtcsim.plot ---------------------------------------------------------

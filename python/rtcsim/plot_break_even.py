@@ -2,16 +2,18 @@
 costs change, and where the calibration's 90 % band leaves that in doubt.
 
 Two sources, one picture:
-- `break_even(result, x_events, y_events, ...)` re-prices a live Result's
-  totals on the grid (per-ray model; any two event groups);
+- `break_even(result, x_events, y_events, ...)` maps a live Result, its
+  cells computed by the simulator exactly as the CLI's (break_even_grid;
+  any two event groups);
 - `break_even_cells(cells)` draws a map the simulator computed: the
   `break_even_<name>.json` written beside `break_even_<name>.png` by the CLI
   and `Result.write_outputs` (warp model where the preset is one, and the band
   over the run's cost draws).
 A cell whose band of the winner's lead reaches 1.0 (another method wins in
 more than 5 % of the draws) is hatched, as in the CLI's pictures
-(sim/plot/break_even.cpp); `break_even(..., band=cells)` hatches a live map
-with the band of the same grid. `in_doubt(cells)` is that mask.
+(sim/plot/break_even.cpp): a live map by its own band (the CLI's, unrounded),
+or with `break_even(..., band=cells)` by a file's. `in_doubt(cells)` is a
+file's mask. Python prices no cell itself.
 """
 import json
 import os
@@ -20,6 +22,8 @@ import numpy as np
 from matplotlib import colors, ticker
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
+
+from . import _rtcsim
 
 PALETTE = ["#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#F0E442", "#000000"]
 HATCH_GID = "break-even band"  # the gid of every hatched cell's patch
@@ -85,45 +89,59 @@ def _draw(winner, margin, names, x_range, y_range, x_label, y_label, title, doub
     return fig
 
 
-def break_even(result, x_events, y_events, x_range=(1, 100), y_range=(1, 100), preset=None, cells=48,
-               title=None, band=None):
-    """Which method is cheapest when two groups of event costs change (log
-    axes, cell centres as the CLI's break_even maps; the other costs from
-    `preset`, per-ray model of the totals). Pale cells: a close call (the
-    runner-up within 10%). `band`: the CLI's cells of the same grid
-    (break_even_<name>.json, a path or dict); its cells in doubt are hatched."""
-    from .results import event_index
-    x_events, y_events = [x_events] if isinstance(x_events, str) else x_events, \
-        [y_events] if isinstance(y_events, str) else y_events
-    p = result.preset_index(preset)
-    cost = np.array(result.costs[p].cycles)
-    xi, yi = [event_index(e) for e in x_events], [event_index(e) for e in y_events]
-    cost[xi + yi] = 0.0
-    centres = (np.arange(cells) + 0.5) / cells
-    xs = x_range[0] * (x_range[1] / x_range[0]) ** centres
-    ys = y_range[0] * (y_range[1] / y_range[0]) ** centres
-    names, cycles = [], []
-    for name, m in result.methods.items():
-        if m.runnable and m.priced[p].supported:
-            t = np.asarray(m.totals, dtype=float)
-            names.append(name)
-            cycles.append(t @ cost + ys[:, None] * t[yi].sum() + xs[None, :] * t[xi].sum())
-    cycles = np.array(cycles)  # (methods, y, x)
-    order = np.sort(cycles, axis=0)
-    winner = np.argmin(cycles, axis=0)
-    margin = order[1] / order[0] if len(names) > 1 else np.full(winner.shape, np.inf)
-    doubt, draws = None, 0
+def break_even_grid(result, spec):
+    """One map's cells of a live Result, computed by the simulator exactly as
+    the CLI computes break_even_<name>.json (sim/report/break_even_maps.cpp):
+    `spec` is a config's break_even entry (name, preset, x, y, cells,
+    methods). Under a warp preset the cells price the recorded waves, costs
+    made of others (sum_of) follow the axes, and the band is over the run's
+    cost draws. A dict of (ny, nx) arrays (row 0 the lowest y): winner (index
+    into methods, -1 none), margin (runner-up / winner cycles, unrounded),
+    band_low, band_high and in_doubt; plus the mark and the caption."""
+    run = getattr(result, "_run", None)
+    if run is None:
+        raise TypeError("break-even maps re-price a live Result (rtcsim.run); for a report on disk, "
+                        "draw the CLI's cells with break_even_cells(\"break_even_<name>.json\")")
+    return _rtcsim.break_even_grid(run, json.dumps(spec), result.file)
+
+
+def _grid_figure(grid, title, band=None):
+    """A live map's figure: hatched where the grid's own band (or, given,
+    `band`: the CLI's cells of the same grid) leaves the winner in doubt."""
+    doubt, draws = (grid["in_doubt"], grid["draws"]) if grid["draws"] else (None, 0)
     if band is not None:
         band = load_cells(band)
-        grid = (band["nx"], band["ny"], band["x"]["lo"], band["x"]["hi"], band["y"]["lo"], band["y"]["hi"])
-        if grid != (cells, cells, *x_range, *y_range):
-            raise ValueError(f"band: its grid (nx, ny, x, y) = {grid} is not this map's "
-                             f"{(cells, cells, *x_range, *y_range)}")
+        have = (band["nx"], band["ny"], band["x"]["lo"], band["x"]["hi"], band["y"]["lo"], band["y"]["hi"])
+        want = (grid["nx"], grid["ny"], grid["x"]["lo"], grid["x"]["hi"], grid["y"]["lo"], grid["y"]["hi"])
+        if have != want:
+            raise ValueError(f"band: its grid (nx, ny, x, y) = {have} is not this map's {want}")
         doubt, draws = in_doubt(band), band.get("draws", 0)
-    return _draw(winner, margin, names, x_range, y_range, " = ".join(x_events) + " [cycles]",
-                 " = ".join(y_events) + " [cycles]",
-                 title or f"{result.label}: fastest method (other costs: {result.cost_presets[p]})",
-                 doubt=doubt, draws=draws)
+    mark = grid["mark"]
+    return _draw(grid["winner"], grid["margin"], grid["methods"], (grid["x"]["lo"], grid["x"]["hi"]),
+                 (grid["y"]["lo"], grid["y"]["hi"]), grid["x"]["label"], grid["y"]["label"], title,
+                 doubt=doubt, draws=draws, mark=(mark["x"], mark["y"]))
+
+
+def break_even(result, x_events, y_events, x_range=(1, 100), y_range=(1, 100), preset=None, cells=48,
+               title=None, band=None, methods=None):
+    """Which method is cheapest when two groups of event costs change (log
+    axes, the other costs from `preset`), computed by the simulator as the
+    CLI's break_even maps (break_even_grid): the same cells as a config's
+    map of the same run. Pale cells: a close call (the runner-up within
+    10%); hatched: in doubt over the run's cost draws. `band`: instead, the
+    CLI's cells of the same grid (break_even_<name>.json, a path or dict)
+    hatch it. `methods`: the methods compared (default: all the run's)."""
+    x_events = [x_events] if isinstance(x_events, str) else list(x_events)
+    y_events = [y_events] if isinstance(y_events, str) else list(y_events)
+    p = result.preset_index(preset)
+    spec = {"name": "python", "preset": result.costs[p].name, "cells": cells,
+            "x": {"events": x_events, "min": x_range[0], "max": x_range[1]},
+            "y": {"events": y_events, "min": y_range[0], "max": y_range[1]}}
+    if methods is not None:
+        spec["methods"] = list(methods)
+    grid = break_even_grid(result, spec)
+    return _grid_figure(grid, title or f"{result.label}: fastest method (other costs: {result.cost_presets[p]})",
+                        band=band)
 
 
 def break_even_cells(cells, title=None, mark=None):
@@ -143,7 +161,8 @@ def break_even_cells(cells, title=None, mark=None):
 def break_even_maps(result, directory=None):
     """{name: Figure} for the config's break_even list. From the CLI's cells
     (with the band) when they are on disk: in `directory`, or beside a
-    report.json loaded from a file; else re-priced from a live Result's totals."""
+    report.json loaded from a file; else computed from a live Result by the
+    simulator (break_even_grid), the same cells."""
     directory = directory or (os.path.dirname(result.path) if getattr(result, "path", None) else None)
     out = {}
     marks = {m["name"]: m for m in result.data.get("break_even", [])}
@@ -153,8 +172,7 @@ def break_even_maps(result, directory=None):
             mark = marks.get(spec["name"], {}).get("mark")
             out[spec["name"]] = break_even_cells(path, title=f"{result.label}: {spec['name']} ({spec['preset']})",
                                                  mark=(mark["x"], mark["y"]) if mark else None)
-        else:
-            out[spec["name"]] = break_even(result, spec["x"]["events"], spec["y"]["events"],
-                                           (spec["x"]["min"], spec["x"]["max"]), (spec["y"]["min"], spec["y"]["max"]),
-                                           spec["preset"], spec.get("cells", 48))
+        else:  # the config's own map, every key of it (scale axes, methods) as the CLI reads it
+            out[spec["name"]] = _grid_figure(break_even_grid(result, spec),
+                                             f"{result.label}: {spec['name']} ({spec['preset']})")
     return out

@@ -51,7 +51,8 @@ class MethodResult:
 
     def price(self, preset):
         """Re-prices this method's counts under a preset (name, path or
-        CostModel) without tracing; warp presets re-price the recorded waves."""
+        CostModel) without tracing; warp presets re-price the recorded waves.
+        A sampled run's are scaled to the whole frame, as the CLI's totals."""
         return self._m.price(load_cost_model(preset))
 
     def priced_by_preset(self):
@@ -121,7 +122,7 @@ class Result(Report):
                 raise ValueError(f"per-pixel warp cycles are kept for the first warp preset only "
                                  f"({self.cost_presets[self._run.warp_preset]})")
             return m.pixel_warp_cycles
-        return m.pixel_counts @ cost.cycles
+        return _rtcsim.price_pixels(m.pixel_counts, cost)  # as the CLI's heat maps and cycles_*.npy
 
     def pixel_events(self, method, event):
         return self.method(method).pixel_events(event)

@@ -30,6 +30,21 @@ def test_pixel_cycles_sum_to_priced_total(tiny):
             assert cycles.sum() == pytest.approx(tiny.cycles(name, preset), rel=1e-12)
 
 
+def test_pixel_cycles_are_the_cli_arrays(tiny, tmp_path):
+    """Per-ray cycles per pixel are priced by the simulator's own call, so
+    they equal its cycles_<method>_<preset>.npy bit for bit (no NumPy sum in
+    another order)."""
+    tiny.write_outputs(tmp_path)
+    for preset in tiny.costs:
+        for name in tiny.methods:
+            cli = np.load(tmp_path / f"cycles_{name}_{preset.name}.npy")
+            assert np.array_equal(tiny.pixel_cycles(name, preset.name), cli)
+            assert np.array_equal(rtcsim.price(tiny[name].pixel_counts, preset), cli)
+            # Any integer type and layout prices the same.
+            wide = np.asfortranarray(tiny[name].pixel_counts.astype(np.int64))
+            assert np.array_equal(rtcsim.price(wide, preset), cli)
+
+
 def test_arrays_are_read_only_views_that_keep_the_run(tiny):
     m = tiny["obb"]
     counts = m.pixel_counts

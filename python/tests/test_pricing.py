@@ -64,6 +64,23 @@ def test_edited_costs_equal_a_preset_file(tmp_path):
         model.cycles = np.full(len(rtcsim.EVENT_NAMES), -1.0)
 
 
+def test_edited_costs_keep_the_sums_of_costs():
+    """turing-calibrated's obb_box_test is blas_box_test + instance_transform
+    (sum_of): editing a term moves the sum, as a break-even axis does, and a
+    sum given its own value keeps it."""
+    model = rtcsim.load_cost_model("turing-calibrated")
+    i = rtcsim.EVENT_INDEX
+    cycles = model.cycles
+    cycles[i["instance_transform"]] = 40.0
+    model.cycles = cycles
+    assert model.cycles[i["obb_box_test"]] == model.cycles[i["blas_box_test"]] + 40.0
+    cycles = model.cycles
+    cycles[i["obb_box_test"]] = 3.0
+    cycles[i["instance_transform"]] = 50.0
+    model.cycles = cycles
+    assert model.cycles[i["obb_box_test"]] == 3.0
+
+
 def test_reprice_equals_rerun_warp(tmp_path):
     a = warp_preset(tmp_path / "warp-a.json", lanes=32, context_switch=200)
     b = warp_preset(tmp_path / "warp-b.json", lanes=4, context_switch=600)

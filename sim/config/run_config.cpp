@@ -103,24 +103,65 @@ void load_presets(RunConfig& c, PresetCache& cache) {
             }
         }
     }
-    for (const BreakEvenSpec& spec : c.break_even) {
-        const CostModel* base = nullptr;
-        for (const auto& m : c.costs)
-            if (m->name == spec.preset) base = m.get();
-        if (!base)
-            throw InputError(c.file + ": /break_even: preset \"" + spec.preset +
-                             "\" is not one of the run's cost presets");
-        // An axis over an event the preset does not price (a program by name
-        // under operation-class pricing) would add its cost on top of the
-        // operations that already price that program.
-        for (const BreakEvenAxis* axis : {&spec.x, &spec.y})
-            for (const Event e : axis->events)
-                if (!base->prices(e))
-                    throw InputError(c.file + ": /break_even: map \"" + spec.name + "\": " + base->unpriced(e));
-    }
+    std::vector<const CostModel*> costs;
+    for (const auto& m : c.costs) costs.push_back(m.get());
+    for (const BreakEvenSpec& spec : c.break_even) check_break_even_preset(spec, costs, c.file);
 }
 
 }  // namespace
+
+BreakEvenSpec parse_break_even_spec(const nlohmann::json& map, const std::string& file, const std::string& path,
+                                    const std::vector<std::string>& methods) {
+    const JsonReader b(map, file, path);
+    if (!map.is_object()) b.fail("", "expected an object");
+    b.allow_only({"name", "preset", "x", "y", "cells", "methods"});
+    BreakEvenSpec spec;
+    spec.name = b.string("name", std::nullopt);
+    spec.preset = b.string("preset", std::nullopt);
+    spec.x = read_axis(b.child("x"));
+    spec.y = read_axis(b.child("y"));
+    // The name is a file name (break_even_<name>.png), checked now, not after tracing.
+    const bool bad_name = spec.name.empty() || spec.name.size() > kMaxFileNamePart || spec.name.front() == '.' ||
+                          file_name_part(spec.name) != spec.name;
+    if (bad_name)
+        b.fail("name", "\"" + spec.name + "\" cannot name the map's files break_even_<name>.png: use 1 to " +
+                           std::to_string(kMaxFileNamePart) + " letters, digits, '-', '_' or '.', not starting with '.'");
+    for (std::size_t k = 0; k < spec.y.events.size(); ++k) {
+        const Event e = spec.y.events[k];
+        if (std::find(spec.x.events.begin(), spec.x.events.end(), e) != spec.x.events.end())
+            b.fail("y/events/" + std::to_string(k), std::string(event_name(e)) + " is on the x axis too: an event has one cost");
+    }
+    spec.cells = static_cast<int>(b.integer("cells", 48, 2, 512));
+    if (const nlohmann::json* ms = b.has("methods") ? &b.json()["methods"] : nullptr) {
+        if (!ms->is_array() || ms->size() < 2) b.fail("methods", "expected a list of at least two of the run's methods");
+        for (std::size_t k = 0; k < ms->size(); ++k) {
+            const std::string key = "methods/" + std::to_string(k);
+            if (!(*ms)[k].is_string()) b.fail(key, "expected a method name, got " + describe((*ms)[k]));
+            const std::string name = (*ms)[k].get<std::string>();
+            if (std::find(methods.begin(), methods.end(), name) == methods.end())
+                b.fail(key, "\"" + name + "\" is not one of the run's methods");
+            if (std::find(spec.methods.begin(), spec.methods.end(), name) != spec.methods.end())
+                b.fail(key, "\"" + name + "\" is listed twice");
+            spec.methods.push_back(name);
+        }
+    }
+    return spec;
+}
+
+void check_break_even_preset(const BreakEvenSpec& spec, const std::vector<const CostModel*>& costs,
+                             const std::string& file) {
+    const CostModel* base = nullptr;
+    for (const CostModel* m : costs)
+        if (m->name == spec.preset) base = m;
+    if (!base)
+        throw InputError(file + ": /break_even: preset \"" + spec.preset + "\" is not one of the run's cost presets");
+    // An axis over an event the preset does not price (a program by name
+    // under operation-class pricing) would add its cost on top of the
+    // operations that already price that program.
+    for (const BreakEvenAxis* axis : {&spec.x, &spec.y})
+        for (const Event e : axis->events)
+            if (!base->prices(e)) throw InputError(file + ": /break_even: map \"" + spec.name + "\": " + base->unpriced(e));
+}
 
 RunConfig parse_run_config(const nlohmann::json& config, const std::string& file, PresetCache* presets) {
     const JsonReader r(config, file);
@@ -247,45 +288,12 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
         const nlohmann::json& list = config["break_even"];
         if (!list.is_array()) r.fail("break_even", "expected a list of maps");
         for (std::size_t i = 0; i < list.size(); ++i) {
-            const JsonReader b(list[i], file, "/break_even/" + std::to_string(i));
-            if (!list[i].is_object()) b.fail("", "expected an object");
-            b.allow_only({"name", "preset", "x", "y", "cells", "methods"});
-            BreakEvenSpec spec;
-            spec.name = b.string("name", std::nullopt);
-            spec.preset = b.string("preset", std::nullopt);
-            spec.x = read_axis(b.child("x"));
-            spec.y = read_axis(b.child("y"));
-            // The name is a file name (break_even_<name>.png), checked now, not after tracing.
-            const bool bad_name = spec.name.empty() || spec.name.size() > kMaxFileNamePart ||
-                                  spec.name.front() == '.' || file_name_part(spec.name) != spec.name;
-            if (bad_name)
-                b.fail("name", "\"" + spec.name + "\" cannot name the map's files break_even_<name>.png: use 1 to " +
-                                   std::to_string(kMaxFileNamePart) +
-                                   " letters, digits, '-', '_' or '.', not starting with '.'");
+            const std::string path = "/break_even/" + std::to_string(i);
+            BreakEvenSpec spec = parse_break_even_spec(list[i], file, path, c.methods);
             for (std::size_t k = 0; k < c.break_even.size(); ++k)
                 if (c.break_even[k].name == spec.name)
-                    b.fail("name", "\"" + spec.name + "\" is also the name of /break_even/" + std::to_string(k) +
-                                       " (each map is written to files of its name)");
-            for (std::size_t k = 0; k < spec.y.events.size(); ++k) {
-                const Event e = spec.y.events[k];
-                if (std::find(spec.x.events.begin(), spec.x.events.end(), e) != spec.x.events.end())
-                    b.fail("y/events/" + std::to_string(k), std::string(event_name(e)) +
-                                                                " is on the x axis too: an event has one cost");
-            }
-            spec.cells = static_cast<int>(b.integer("cells", 48, 2, 512));
-            if (const nlohmann::json* ms = b.has("methods") ? &b.json()["methods"] : nullptr) {
-                if (!ms->is_array() || ms->size() < 2) b.fail("methods", "expected a list of at least two of the run's methods");
-                for (std::size_t k = 0; k < ms->size(); ++k) {
-                    const std::string key = "methods/" + std::to_string(k);
-                    if (!(*ms)[k].is_string()) b.fail(key, "expected a method name, got " + describe((*ms)[k]));
-                    const std::string name = (*ms)[k].get<std::string>();
-                    if (std::find(c.methods.begin(), c.methods.end(), name) == c.methods.end())
-                        b.fail(key, "\"" + name + "\" is not one of the run's methods");
-                    if (std::find(spec.methods.begin(), spec.methods.end(), name) != spec.methods.end())
-                        b.fail(key, "\"" + name + "\" is listed twice");
-                    spec.methods.push_back(name);
-                }
-            }
+                    JsonReader(list[i], file, path).fail("name", "\"" + spec.name + "\" is also the name of /break_even/" +
+                                                                  std::to_string(k) + " (each map is written to files of its name)");
             c.break_even.push_back(std::move(spec));
         }
     }

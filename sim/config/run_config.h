@@ -91,4 +91,15 @@ struct PresetCache {
 [[nodiscard]] RunConfig parse_run_config(const nlohmann::json& config, const std::string& file,
                                          PresetCache* presets = nullptr);
 
+// One map of a config's `break_even` list (`map`, at JSON path `path` of
+// `file`): every key checked, its methods among the run's `methods`. Python's
+// rtcsim.plot.break_even asks for its maps through it, so a map means the
+// same there as in a config. (Names unique in the list: the caller's check.)
+[[nodiscard]] BreakEvenSpec parse_break_even_spec(const nlohmann::json& map, const std::string& file,
+                                                  const std::string& path, const std::vector<std::string>& methods);
+// A map's preset is one of `costs` (by name) and prices every event its axes
+// set; else an InputError naming `file`.
+void check_break_even_preset(const BreakEvenSpec& spec, const std::vector<const CostModel*>& costs,
+                             const std::string& file);
+
 }  // namespace rtc
