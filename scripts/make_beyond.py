@@ -83,7 +83,8 @@ def total_bytes(method, preset):
     accel = (tlas + s["blas_nodes"]) * node + s["instances"] * preset["instance"] + \
         s["custom_prims"] * preset["custom_prim"] + s["triangles"] * preset["triangle"] + \
         s.get("lss_prims", 0) * preset["lss_prim"] + s.get("oriented_children", 0) * preset["obb_child"] + \
-        s.get("leaf_obbs", 0) * preset["leaf_obb"] + s.get("blases", 0) * preset["blas"]
+        s.get("leaf_obbs", 0) * preset["leaf_obb"] + s.get("blases", 0) * preset["blas"] + \
+        s.get("strip_vertices", 0) * preset["mesh_vertex"] + s.get("strip_triangles", 0) * preset["mesh_triangle"]
     return accel + method["memory_bytes"]["common"]
 
 

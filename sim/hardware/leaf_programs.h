@@ -101,6 +101,16 @@ public:
         return h ? offer({h->t, h->normal, h->u, index, GeometryId::Triangles}) : kInfinity;
     }
 
+    // A hardware ray/triangle test of a triangle that stands in for curve
+    // primitive `prim` (dots: crossed quads per segment). The RT unit does
+    // exactly what it does for a mesh triangle; the hit is reported as the
+    // primitive's, so it competes with (and is compared with) curve hits.
+    float proxy_triangle(const Triangle& tri, std::uint32_t prim, Ray object_ray, float tmax) {
+        object_ray.tmax = tmax;
+        const auto h = intersect(tri, object_ray, sink_);
+        return h ? offer({h->t, h->normal, h->u, prim, GeometryId::Curves}) : kInfinity;
+    }
+
     // A custom-primitive leaf: the hand-over to the SM, then primitive
     // `index`'s program with `ray` (now, or after traversal when deferred).
     float custom(std::uint32_t index, const Ray& ray, float tmax) {

@@ -19,6 +19,9 @@ MemoryBreakdown price_memory(const StructureCounts& c, const MemoryModel& m, Pri
     b.oriented_children = static_cast<double>(c.oriented_children) * m.obb_child_bytes;
     b.leaf_obbs = static_cast<double>(c.leaf_obbs) * m.leaf_obb_bytes;
     b.blas_headers = static_cast<double>(c.blases) * m.blas_bytes;
+    // The stand-in triangles' buffers are laid out as a mesh's are.
+    b.strip_buffers = static_cast<double>(c.strip_vertices) * m.mesh_vertex_bytes +
+                      static_cast<double>(c.strip_triangles) * m.mesh_triangle_bytes;
     b.common = static_cast<double>(primitives) *
                    m.primitive_data_bytes[static_cast<std::size_t>(kind)] +
                static_cast<double>(mesh_vertices) * m.mesh_vertex_bytes +

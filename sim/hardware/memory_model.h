@@ -45,6 +45,10 @@ struct StructureCounts {
     std::uint64_t lss_prims = 0;          // hardware LSS primitives
     std::uint64_t oriented_children = 0;  // child boxes with their own transform
     std::uint64_t leaf_obbs = 0;          // per-primitive OBBs for a software leaf test
+    // Triangles that stand in for curves (dots): their vertex and index
+    // buffers, which the BLAS is built from and the method keeps. Their
+    // BLAS records are counted in `triangles`.
+    std::uint64_t strip_vertices = 0, strip_triangles = 0;
     std::uint64_t blases = 0;  // distinct BLASes (each has a header and an aligned buffer)
     int width = 4;
 };
@@ -53,10 +57,12 @@ struct MemoryBreakdown {
     double tlas_nodes = 0, blas_nodes = 0, instances = 0, custom_prims = 0, triangles = 0;
     double lss_prims = 0, oriented_children = 0, leaf_obbs = 0;
     double blas_headers = 0;
+    double strip_buffers = 0;  // dots: the stand-in triangles' vertices and indices
     double common = 0;  // primitive data + mesh, shared by every method
+    // What the method builds and keeps (common is what every method shares).
     [[nodiscard]] double acceleration() const {
         return tlas_nodes + blas_nodes + instances + custom_prims + triangles + lss_prims +
-               oriented_children + leaf_obbs + blas_headers;
+               oriented_children + leaf_obbs + blas_headers + strip_buffers;
     }
     [[nodiscard]] double total() const { return acceleration() + common; }
 };

@@ -54,6 +54,11 @@ struct MethodInfo {
     // Hardware features the method relies on; a cost preset without one of
     // them prices the method as n/a (see CostModel::features).
     std::vector<std::string> needs;
+    // Its hits approximate the primitives' (dots: triangles stand in for
+    // curves) instead of being ref's bit for bit: a run reports its hit
+    // agreement with the baseline (sim/run/hit_agreement.h), and the tests
+    // that require identical hits leave it out.
+    bool approximate = false;
 };
 
 // A method's structures, built for one geometry.

@@ -13,6 +13,7 @@ namespace rtc {
     X(leaf_obb)                   \
     X(split)                      \
     X(lss)                        \
+    X(dots)                       \
     X(obb_nodes)                  \
     X(obb_quantized)              \
     X(cluster)

@@ -75,6 +75,15 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
         j["rays_sampling_interval"] = m.sampled->rays_interval;
     }
     j["events"] = events_json(m.totals(), rays, m.sampled ? &*m.sampled : nullptr);
+    if (m.agreement) {  // an approximate method's hits against the baseline's (sim/run/hit_agreement.h)
+        const HitAgreement& a = *m.agreement;
+        j["hit_agreement"] = {{"baseline", a.baseline},
+                              {"rays", a.rays},
+                              {"fraction", a.fraction()},
+                              {"hit_miss_fraction", a.hit_miss_fraction()},
+                              {"both_hit", a.both_hit},
+                              {"tolerance_radii", a.tolerance_radii}};
+    }
     nlohmann::ordered_json cycles;
     for (std::size_t p = 0; p < run.costs.size(); ++p) {
         const PricedRun& pr = m.priced[p];
@@ -158,6 +167,7 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
                          {"triangles", mem.triangles},       {"lss_prims", mem.lss_prims},
                          {"oriented_children", mem.oriented_children},
                          {"leaf_obbs", mem.leaf_obbs},       {"blas_headers", mem.blas_headers},
+                         {"strip_buffers", mem.strip_buffers},
                          {"acceleration", mem.acceleration()},
                          {"common", mem.common},             {"total", mem.total()}};
     j["structures"] = {{"width", m.structures.width},
@@ -169,6 +179,8 @@ nlohmann::ordered_json method_json(const MethodRun& m, const RunResult& run) {
                        {"lss_prims", m.structures.lss_prims},
                        {"oriented_children", m.structures.oriented_children},
                        {"leaf_obbs", m.structures.leaf_obbs},
+                       {"strip_vertices", m.structures.strip_vertices},
+                       {"strip_triangles", m.structures.strip_triangles},
                        {"blases", m.structures.blases}};
     j["simulator"] = {{"build_seconds", m.build_seconds},
                       {"trace_seconds", m.frame.trace_seconds},

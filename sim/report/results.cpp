@@ -89,7 +89,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
     for (const char* c : {"primitive_kind", "primitive_count", "aabb_over_obb_area", "method", "baseline", "cost_preset",
                           "execution", "memory_preset", "instances", "rays", "cycles", "cycles_per_ray", "speedup",
                           "speedup_low", "speedup_high", "sampling_low", "sampling_high", "is_calls", "is_calls_per_ray", "memory_bytes", "memory_mib", "memory_overhead_percent",
-                          "reason"})
+                          "hit_agreement", "reason"})
         header.emplace_back(c);
     std::vector<std::vector<std::string>> rows;
     for (std::size_t point = 0; point < runs.size(); ++point) {
@@ -133,7 +133,7 @@ std::string results_csv(const std::vector<RunResult>& runs) {
                       interval ? raw((*interval)[0]) : "", interval ? raw((*interval)[1]) : "",
                       sampled ? raw(sampled->interval[0]) : "", sampled ? raw(sampled->interval[1]) : "", raw(calls),
                       m.runnable ? per(calls, rays) : "", raw(mem), raw(mem / (1024.0 * 1024.0)), raw(overhead),
-                      text(reason)})
+                      m.agreement ? raw(m.agreement->fraction()) : "", text(reason)})
                     row.push_back(c);
                 rows.push_back(std::move(row));
             }

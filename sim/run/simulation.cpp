@@ -240,6 +240,24 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
                                     r.warp_grouping ? r.warp_grouping->tile_width : 8,
                                     r.warp_grouping ? r.warp_grouping->tile_height : 4, c.sampling);
     bool rays_written = false;
+    // Approximate methods (dots) are compared with the baseline on a sample of
+    // the rays the baseline traced (hit_agreement.h), which it records for
+    // that. Not in sharded runs: a band's rays are not the frame's.
+    const bool compare_hits =
+        !ctx.frame_source && ctx.bands == 0 &&
+        std::find(c.methods.begin(), c.methods.end(), c.baseline) != c.methods.end() &&
+        std::any_of(c.methods.begin(), c.methods.end(),
+                    [](const std::string& name) { return find_method(name)->info.approximate; });
+    std::optional<AgreementSample> baseline_sample;
+    // Approximate methods traced before the baseline, kept built until its sample exists.
+    std::vector<std::pair<std::size_t, std::unique_ptr<BuiltMethod>>> awaiting_sample;
+    const auto compare_with_baseline = [&](MethodRun& m, const BuiltMethod& built) {
+        m.agreement = measure_hit_agreement(built, geometry, c.trace, *baseline_sample, c.baseline, ctx.threads);
+        if (!ctx.quiet)
+            std::fprintf(stderr, "%s: hits agree with %s's on %.4f of %llu of its rays\n", m.method.c_str(),
+                         c.baseline.c_str(), m.agreement->fraction(),
+                         static_cast<unsigned long long>(m.agreement->rays));
+    };
     for (const std::string& name : c.methods) {
         throw_if_interrupted();
         const MethodEntry& method = *find_method(name);  // names were checked when parsing
@@ -264,7 +282,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
         const auto t_build = std::chrono::steady_clock::now();
         if (!ctx.quiet) std::fprintf(stderr, "build %s: %llu instances...", name.c_str(),
                                      static_cast<unsigned long long>(m.instances));
-        const std::unique_ptr<BuiltMethod> built = method.build(geometry, build);
+        std::unique_ptr<BuiltMethod> built = method.build(geometry, build);
         m.build_seconds = seconds_since(t_build);
         if (!ctx.quiet) std::fprintf(stderr, " done in %.2f s\n", m.build_seconds);
         throw_if_interrupted();  // a build is not interruptible inside: core knows nothing of signals
@@ -274,8 +292,10 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
         fo.threads = ctx.threads;
         fo.progress = !ctx.quiet;
         fo.label = "trace " + name;
-        fo.record_hits = c.output.write_hits;
-        fo.record_rays = c.output.write_rays && !rays_written;
+        const bool sample_baseline = compare_hits && name == c.baseline;
+        const bool write_rays_file = c.output.write_rays && !rays_written;
+        fo.record_hits = c.output.write_hits || sample_baseline;
+        fo.record_rays = write_rays_file || sample_baseline;
         fo.warp = r.warp_grouping ? &*r.warp_grouping : nullptr;
         fo.warp_presets = warp_presets;
         fo.warp_draws = draws.warp_sets;
@@ -285,24 +305,34 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
         fo.bands = ctx.bands;
         fo.sample = r.sample ? &*r.sample : nullptr;
         m.frame = ctx.frame_source ? ctx.frame_source(name) : built->run(geometry, frame, c.trace, fo);
-        if (!ctx.out_dir.empty() && fo.record_rays) {
+        if (!ctx.out_dir.empty() && write_rays_file) {
             write_ray_file((std::filesystem::path(ctx.out_dir) / "rays.bin").string(), m.frame.rays);
             rays_written = true;
         }
-        if (!ctx.out_dir.empty() && fo.record_hits) {
+        if (!ctx.out_dir.empty() && c.output.write_hits) {
             HitFileWriter w((std::filesystem::path(ctx.out_dir) / ("hits_" + name + ".bin")).string());
             w.append(std::span<const TraceHit>(m.frame.hits));
             w.close();
         }
-        if (!ctx.keep_rays) {
+        if (sample_baseline) baseline_sample = agreement_sample(m.frame.rays, m.frame.hits);
+        // Kept for the caller only where the config asked for them.
+        if (!ctx.keep_rays || !write_rays_file) {
             m.frame.rays.clear();
             m.frame.rays.shrink_to_fit();
+        }
+        if (!ctx.keep_rays || !c.output.write_hits) {
             m.frame.hits.clear();
             m.frame.hits.shrink_to_fit();
         }
         price_method(m, r, method, warp_index, draws, warp_index);
+        if (compare_hits && method.info.approximate) {
+            if (baseline_sample) compare_with_baseline(m, *built);
+            else awaiting_sample.emplace_back(r.methods.size(), std::move(built));
+        }
         r.methods.push_back(std::move(m));
     }
+    for (auto& [index, built] : awaiting_sample)
+        if (baseline_sample) compare_with_baseline(r.methods[index], *built);
     r.total_seconds = seconds_since(t_start);
     return r;
 }

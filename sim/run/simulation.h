@@ -10,6 +10,7 @@
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/memory_model.h"
 #include "sim/run/area_stats.h"
+#include "sim/run/hit_agreement.h"
 #include "sim/run/sampled_run.h"
 #include "sim/run/work_estimate.h"
 
@@ -38,6 +39,10 @@ struct MethodRun {
     // uncertainty block (empty: the preset has none, or draws are off).
     std::vector<std::vector<double>> draw_cycles;
     MemoryBreakdown memory;
+    // Approximate methods (MethodInfo::approximate): their hits against the
+    // baseline's on a sample of the baseline's rays (hit_agreement.h); unset
+    // for exact methods, without the baseline in the run, and in sharded runs.
+    std::optional<HitAgreement> agreement;
     // Sampled runs (RunResult::sample): the estimates over the whole frame.
     // `priced`, `warp` and `draw_cycles` are already scaled to it; `frame`
     // holds what was traced (the sampled tiles only).

@@ -70,6 +70,12 @@ TEST_CASE("derived presets: deltas scale, replace or compose, the rest is the ba
     CHECK(ampere[Event::OpFma] == 0.5 * turing[Event::OpFma]);
     CHECK(ampere[Event::OpSqrt] == turing[Event::OpSqrt]);
     CHECK(ada[Event::TriangleTest] == 0.25 * turing[Event::TriangleTest]);
+    // Blackwell doubles Ada's triangle rate (its whitepaper), and the LSS
+    // test, priced as 2 triangle passes (sum_of), follows it.
+    const CostModel blackwell = shipped("blackwell");
+    CHECK(blackwell[Event::TriangleTest] == 0.5 * ada[Event::TriangleTest]);
+    CHECK(blackwell[Event::LssTest] == 2.0 * blackwell[Event::TriangleTest]);
+    CHECK(blackwell.source[static_cast<std::size_t>(Event::TriangleTest)].find("RTX Blackwell") != std::string::npos);
     CHECK(ampere.source[static_cast<std::size_t>(Event::Ray)].rfind("turing-calibrated: fitted by rtcsim calibrate", 0) == 0);
     CHECK(ampere.source[static_cast<std::size_t>(Event::TriangleTest)].rfind("[D] NVIDIA GA102", 0) == 0);
 

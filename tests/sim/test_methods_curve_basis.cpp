@@ -56,6 +56,7 @@ TEST_CASE("methods: every method returns ref's closest hit on a Bezier-basis cur
     const Prims cases[] = {{PrimitiveKind::Capsule, 1, 24 * 30}, {PrimitiveKind::Link, 1, 24 * 30},
                            {PrimitiveKind::Phantom, 1, 24 * 10}, {PrimitiveKind::Phantom, 2, 24 * 20},
                            {PrimitiveKind::Phantom, 4, 24 * 40}, {PrimitiveKind::Phantom, 8, 24 * 80}};
+    // Not dots: its hits approximate the curves (test_methods_dots.cpp).
     const char* methods[] = {"obb", "leaf-obb", "split", "lss", "obb-nodes", "obb-quantized", "cluster"};
     for (const Prims& c : cases) {
         const Geometry g = make_geometry(scene, c.kind, c.subdivision);

@@ -79,6 +79,31 @@ TEST_CASE("simulate e2e: a tiny run writes every output and both methods agree")
     CHECK(slurp(dir + "/summary.csv").find("tiny") != std::string::npos);
 }
 
+TEST_CASE("simulate e2e: dots reports its hit agreement with ref, traced before or after it") {
+    // Without hit files: ref records a sample of its rays for the comparison
+    // only; dots traced first waits for it.
+    const std::vector<std::string> quiet{"output.rays=false", "output.hits=false", "output.images=false"};
+    const std::string after = out_dir("dots_after"), before = out_dir("dots_before");
+    auto sets = quiet;
+    sets.push_back("methods=[\"ref\",\"dots\"]");
+    REQUIRE(run(kTiny, after, sets) == 0);
+    sets.back() = "methods=[\"dots\",\"ref\"]";
+    REQUIRE(run(kTiny, before, sets) == 0);
+    const auto a = report(after), b = report(before);
+    const auto& h = a["methods"]["dots"]["hit_agreement"];
+    CHECK(h["baseline"] == "ref");
+    CHECK(h["rays"].get<std::uint64_t>() == a["methods"]["ref"]["rays"].get<std::uint64_t>());  // all, under 65,536
+    CHECK(h["fraction"].get<double>() > 0.9);
+    CHECK(h["fraction"].get<double>() <= h["hit_miss_fraction"].get<double>());
+    CHECK(b["methods"]["dots"]["hit_agreement"] == h);
+    CHECK_FALSE(a["methods"]["ref"].contains("hit_agreement"));  // exact methods are tested, not measured
+    CHECK(a["methods"]["dots"]["events"]["is_call"]["total"] == 0);
+    CHECK(a["methods"]["dots"]["memory_bytes"]["strip_buffers"].get<double>() > 0.0);
+    for (const char* f : {"rays.bin", "hits_ref.bin", "hits_dots.bin"}) CHECK_FALSE(fs::exists(fs::path(after) / f));
+    const std::string csv = slurp(after + "/results.csv");
+    CHECK(csv.find(",hit_agreement,reason") != std::string::npos);
+}
+
 TEST_CASE("simulate e2e: a ray file replays to the same hits") {
     const std::string first = out_dir("record");
     REQUIRE(run(kTiny, first) == 0);

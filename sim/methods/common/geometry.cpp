@@ -41,6 +41,10 @@ std::vector<BoundProxy> bound_proxies(const Geometry& g) {
     return out;
 }
 
+float primitive_radius(const Geometry& g, std::uint32_t index) {
+    return std::visit([&](const auto& v) { return proxy(v[index]).radius; }, g.prims);
+}
+
 Aabb geometry_bounds(const Geometry& g) {
     Aabb b;
     std::visit([&](const auto& v) { for (const auto& p : v) b.extend(bounds(p)); }, g.prims);

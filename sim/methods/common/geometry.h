@@ -33,6 +33,10 @@ struct Geometry {
 // points with the largest radius (convex hull property).
 [[nodiscard]] std::vector<BoundProxy> bound_proxies(const Geometry& geometry);
 
+// The largest radius of primitive `index` (a strand's thickness at its
+// thickest: what hit distances are compared against).
+[[nodiscard]] float primitive_radius(const Geometry& geometry, std::uint32_t index);
+
 // World bounds of every primitive and triangle (for camera framing).
 [[nodiscard]] Aabb geometry_bounds(const Geometry& geometry);
 

@@ -46,8 +46,8 @@ StructureCounts count_two_level(const TwoLevelStructures& s) {
         const Bvh& blas = s.accel.blases[b];
         c.blas_nodes += blas.node_count();
         const BlasKind k = s.blas_kind[b];
-        (k == BlasKind::Triangles ? c.triangles : k == BlasKind::Lss ? c.lss_prims : c.custom_prims) +=
-            blas.primitive_count();
+        const bool triangles = k == BlasKind::Triangles || k == BlasKind::StandInTriangles;
+        (triangles ? c.triangles : k == BlasKind::Lss ? c.lss_prims : c.custom_prims) += blas.primitive_count();
     }
     return c;
 }

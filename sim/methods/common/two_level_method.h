@@ -17,8 +17,10 @@
 namespace rtc {
 
 // Custom: leaves are custom primitives (a hand-over each); Triangles: the
-// mesh; Lss: leaves are linear swept spheres tested in the RT unit.
-enum class BlasKind : std::uint8_t { Custom, Triangles, Lss };
+// mesh; Lss: leaves are linear swept spheres tested in the RT unit;
+// StandInTriangles: triangles tested in the RT unit that stand in for the
+// curve primitives (dots), hits reported as the primitives'.
+enum class BlasKind : std::uint8_t { Custom, Triangles, Lss, StandInTriangles };
 
 struct TwoLevelStructures {
     TwoLevel accel;
