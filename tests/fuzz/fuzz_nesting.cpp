@@ -13,18 +13,10 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 2) return 0;
-    const std::size_t repeat = 4 * (std::size_t(data[0]) | std::size_t(data[1]) << 8);
-    const std::string rest(reinterpret_cast<const char*>(data) + 2, size - 2);
-    std::vector<std::string> part;
-    std::size_t at = 0;
-    while (part.size() < 5) {
-        const std::size_t end = std::min(rest.find('\n', at), rest.size());
-        part.push_back(at <= rest.size() ? rest.substr(at, end - at) : std::string());
-        at = end + 1;
-    }
-    constexpr std::size_t kMaxText = 8u << 20;
+    const rtc::fuzz::RepeatedParts in = rtc::fuzz::repeated_parts(data, size, 5);
+    const std::vector<std::string>& part = in.part;
     const std::size_t unit = part[1].size() + part[3].size();
-    const std::size_t k = unit > 0 ? std::min(repeat, kMaxText / unit) : 0;
+    const std::size_t k = in.capped_for(unit);
     std::string text = part[0];
     text.reserve(part[0].size() + k * unit + part[2].size() + part[4].size());
     for (std::size_t i = 0; i < k; ++i) text += part[1];

@@ -19,10 +19,42 @@
 #include "sim/run/work_estimate.h"
 #include "sim/config/workload_config.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 namespace rtc::fuzz {
+
+// The input format of the harnesses that build texts larger than libFuzzer's
+// input limit (fuzz_nesting, fuzz_set_depth): the first two bytes give a
+// repeat count (0-262,140 in steps of 4), the rest is up to `lines` lines
+// (missing ones empty).
+struct RepeatedParts {
+    std::size_t repeat = 0;
+    std::vector<std::string> part;
+
+    // The repeat count cut so that that many copies of `unit` characters
+    // stay within 8 MB (0 for an empty unit).
+    [[nodiscard]] std::size_t capped_for(std::size_t unit) const {
+        constexpr std::size_t kMaxText = 8u << 20;
+        return unit > 0 ? std::min(repeat, kMaxText / unit) : 0;
+    }
+};
+
+// Splits an input of at least two bytes (callers return early on less).
+inline RepeatedParts repeated_parts(const std::uint8_t* data, std::size_t size, std::size_t lines) {
+    RepeatedParts r;
+    r.repeat = 4 * (std::size_t(data[0]) | std::size_t(data[1]) << 8);
+    const std::string rest(reinterpret_cast<const char*>(data) + 2, size - 2);
+    std::size_t at = 0;
+    while (r.part.size() < lines) {
+        const std::size_t end = std::min(rest.find('\n', at), rest.size());
+        r.part.push_back(at <= rest.size() ? rest.substr(at, end - at) : std::string());
+        at = end + 1;
+    }
+    return r;
+}
 
 inline void run_pipeline(nlohmann::json config, const std::vector<std::string>& sets) {
     const std::string file = "fuzz.json";  // relative paths resolve from the working directory

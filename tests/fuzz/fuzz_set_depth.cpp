@@ -10,24 +10,14 @@
 // config, as the CLI, Python's sets= and a shard.json's sets take it.
 #include "fuzz_pipeline.h"
 
-#include <algorithm>
 #include <string>
 #include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 2) return 0;
-    const std::size_t repeat = 4 * (std::size_t(data[0]) | std::size_t(data[1]) << 8);
-    const std::string rest(reinterpret_cast<const char*>(data) + 2, size - 2);
-    std::vector<std::string> part;
-    std::size_t at = 0;
-    while (part.size() < 7) {
-        const std::size_t end = std::min(rest.find('\n', at), rest.size());
-        part.push_back(at <= rest.size() ? rest.substr(at, end - at) : std::string());
-        at = end + 1;
-    }
-    constexpr std::size_t kMaxText = 8u << 20;
-    const std::size_t unit = part[1].size() + part[3].size() + part[5].size();
-    const std::size_t k = unit > 0 ? std::min(repeat, kMaxText / unit) : 0;
+    const rtc::fuzz::RepeatedParts in = rtc::fuzz::repeated_parts(data, size, 7);
+    const std::vector<std::string>& part = in.part;
+    const std::size_t k = in.capped_for(part[1].size() + part[3].size() + part[5].size());
     std::string spec = part[0];
     for (std::size_t i = 0; i < k; ++i) spec += part[1];
     spec += "=" + part[2];
