@@ -6,7 +6,7 @@
 #include "priced.h"
 
 #include "sim/methods/method.h"
-#include "sim/run/sampled_run.h"  // scale_priced, scale_warp
+#include "sim/run/simulation.h"  // price_preset
 
 #include <stdexcept>
 
@@ -64,31 +64,28 @@ py::dict structures_dict(const StructureCounts& s) {
 Priced reprice(const MethodHandle& h, const CostModel& model) {
     const MethodRun& m = h.method();
     if (!m.runnable) throw std::invalid_argument(m.method + " was not run: " + m.reason);
-    Priced p;
-    p.run = price(m.frame.totals, model);
-    p.run.execution = model.execution.kind;
+    std::optional<WarpTotals> waves;
     if (model.execution.warp()) {
         if (m.frame.warp_trace.waves() == 0)
             throw std::invalid_argument(model.name + " is a warp preset: re-pricing needs the waves, "
                                         "so trace with record_warps=True and a warp preset in the run");
         if (!h.run->warp_grouping || !h.run->warp_grouping->same_grouping(model.execution))
             throw std::invalid_argument(model.name + " groups rays into other warps than the run traced");
-        const MethodEntry* e = find_method(m.method);
-        p.roof = method_roofline(model, h.run->config, e ? e->info.needs : std::vector<std::string>{});
         py::gil_scoped_release release;
-        p.warp = m.frame.warp_trace.price(model);
-        p.warp_width = model.execution.warp_width;
-        p.run.total_cycles = p.warp->cycles(p.roof);
+        waves = m.frame.warp_trace.price(model);
     }
-    if (const MethodEntry* e = find_method(m.method)) p.run.missing_feature = model.missing_feature(e->info.needs);
-    p.run.supported = p.run.missing_feature.empty();
-    // A sampled run traced 1 / k of the tiles: scaled to the whole frame by
-    // the calls, and in the order, the run's own pricing used (price_method,
-    // sim/run/simulation.cpp), so the totals are report.json's.
-    if (h.run->sample) {
-        const std::uint32_t k = h.run->sample->k();
-        scale_priced(p.run, k);
-        if (p.warp) scale_warp(*p.warp, k);
+    // The run's own per-preset step (sim/run/simulation.h), so the totals
+    // are what report.json would have (a sampled run's scaled to the frame).
+    const MethodEntry* e = find_method(m.method);
+    PresetPrice priced = price_preset(m.frame.totals, model, waves ? &*waves : nullptr, h.run->config,
+                                      e ? e->info.needs : std::vector<std::string>{},
+                                      h.run->sample ? h.run->sample->k() : 1);
+    Priced p;
+    p.run = std::move(priced.run);
+    p.roof = priced.roof;
+    if (waves) {
+        p.warp = priced.warp;
+        p.warp_width = model.execution.warp_width;
     }
     return p;
 }

@@ -85,39 +85,30 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
     m.priced.clear();
     m.warp.clear();
     m.roof.clear();
-    for (const CostModel& cost : r.costs) m.roof.push_back(method_roofline(cost, r.config, method.info.needs));
-    m.draw_cycles.assign(r.costs.size(), {});
-    for (std::size_t k = 0; k < r.costs.size(); ++k)
-        for (std::size_t d = 0; d < draws.models[k].size(); ++d)
-            m.draw_cycles[k].push_back(draws.warp_slot[k] != SIZE_MAX
-                                           ? m.frame.warp[draws.warp_slot[k] + d].cycles(m.roof[k])
-                                           : price(m.frame.totals, draws.models[k][d]).total_cycles);
-    for (std::size_t k = 0; k < r.costs.size(); ++k) {
-        const CostModel& cost = r.costs[k];
-        PricedRun p = price(m.frame.totals, cost);
-        p.execution = cost.execution.kind;
-        m.warp.emplace_back();
-        if (warp_index[k] != SIZE_MAX) {
-            m.warp.back() = m.frame.warp[warp_index[k]];
-            p.total_cycles = m.warp.back().cycles(m.roof[k]);
-        }
-        p.missing_feature = cost.missing_feature(method.info.needs);
-        p.supported = p.missing_feature.empty();
-        m.priced.push_back(std::move(p));
+    const std::uint32_t k = r.sample ? r.sample->k() : 1;
+    for (std::size_t p = 0; p < r.costs.size(); ++p) {
+        PresetPrice priced = price_preset(m.frame.totals, r.costs[p], warp_index[p] != SIZE_MAX ? &m.frame.warp[warp_index[p]] : nullptr,
+                                          r.config, method.info.needs, k);
+        m.priced.push_back(std::move(priced.run));
+        m.warp.push_back(priced.warp);
+        m.roof.push_back(priced.roof);
     }
+    // The draws of each preset's uncertainty block, on the same roofline.
+    m.draw_cycles.assign(r.costs.size(), {});
+    for (std::size_t p = 0; p < r.costs.size(); ++p)
+        for (std::size_t d = 0; d < draws.models[p].size(); ++d)
+            m.draw_cycles[p].push_back(k * (draws.warp_slot[p] != SIZE_MAX
+                                                ? m.frame.warp[draws.warp_slot[p] + d].cycles(m.roof[p])
+                                                : price(m.frame.totals, draws.models[p][d]).total_cycles));
     m.memory = price_memory(m.structures, r.memory, r.config.kind, r.primitives, r.mesh_vertices, r.mesh_triangles);
     m.sampled.reset();
     if (!r.sample) return;
-    // A sampled frame: every total scaled to the whole frame, and its
-    // interval from the traced tiles (each warp preset's per-pixel cycles,
-    // pixel_warp_index[k] of the frame's; per-ray presets from the counts).
-    const std::uint32_t k = r.sample->k();
+    // A sampled frame: its interval from the traced tiles (each warp
+    // preset's per-pixel cycles, pixel_warp_index[p] of the frame's;
+    // per-ray presets from the counts).
     std::vector<const std::vector<float>*> warp_pixels(r.costs.size(), nullptr);
     std::vector<double> totals;
     for (std::size_t p = 0; p < r.costs.size(); ++p) {
-        scale_priced(m.priced[p], k);
-        scale_warp(m.warp[p], k);
-        for (double& c : m.draw_cycles[p]) c *= k;
         totals.push_back(m.priced[p].total_cycles);
         const std::size_t w = p < pixel_warp_index.size() ? pixel_warp_index[p] : SIZE_MAX;
         if (w == 0) warp_pixels[p] = &m.frame.pixel_warp_cycles;
@@ -142,6 +133,23 @@ Roofline method_roofline(const CostModel& cost, const RunConfig& r, const std::v
     } catch (const std::invalid_argument& e) {
         throw InputError("cost preset " + cost.name + ": " + e.what());
     }
+}
+
+PresetPrice price_preset(const EventTotals& totals, const CostModel& cost, const WarpTotals* warp,
+                         const RunConfig& config, const std::vector<std::string>& needs, std::uint32_t sample_k) {
+    PresetPrice p;
+    p.roof = method_roofline(cost, config, needs);
+    p.run = price(totals, cost);
+    p.run.execution = cost.execution.kind;
+    if (warp) {
+        p.warp = *warp;
+        p.run.total_cycles = p.warp.cycles(p.roof);
+    }
+    p.run.missing_feature = cost.missing_feature(needs);
+    p.run.supported = p.run.missing_feature.empty();
+    scale_priced(p.run, sample_k);
+    scale_warp(p.warp, sample_k);
+    return p;
 }
 
 const MethodRun* RunResult::find(std::string_view name) const {

@@ -57,6 +57,24 @@ struct MethodRun {
 // for presets without an SM block).
 [[nodiscard]] Roofline method_roofline(const CostModel& cost, const RunConfig& r, const std::vector<std::string>& needs);
 
+// One method's frame priced under one cost preset. This is the one
+// per-preset step of pricing: a run's own (every preset of its config) and a
+// later re-pricing under another preset (Python's MethodRun.price) both take
+// it, so the second gives what report.json would have.
+struct PresetPrice {
+    PricedRun run;    // totals priced per ray; total_cycles the warp model's under a warp preset
+    WarpTotals warp;  // the waves' figures (all zero under a per-ray preset)
+    Roofline roof;    // the SM the waves are priced on
+};
+
+// `totals`: the traced event totals. `warp`: the frame's waves priced under
+// `cost` (a warp preset), or nullptr (a per-ray preset). `needs`: the
+// method's hardware features. `sample_k`: a sampled run traced 1 / k of its
+// tiles, and every figure is scaled to the whole frame (1: traced in full).
+[[nodiscard]] PresetPrice price_preset(const EventTotals& totals, const CostModel& cost, const WarpTotals* warp,
+                                       const RunConfig& config, const std::vector<std::string>& needs,
+                                       std::uint32_t sample_k);
+
 struct RunResult {
     RunConfig config;
     PointJson point;                   // set by the app for the reports; never read here
