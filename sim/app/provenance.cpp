@@ -72,6 +72,11 @@ ojson provenance_json(const RunResult& run, unsigned threads, const std::vector<
         ojson p = preset_json(run.config.cost_presets[i],
                               i < run.config.costs.size() && run.config.costs[i] ? run.config.costs[i]->files : nullptr);
         p["name"] = i < run.costs.size() ? run.costs[i].name : std::string();
+        // The costs it priced with, flattened (a derived preset's deltas
+        // applied to its bases, sums of other costs summed), as loaded
+        // before tracing: what its contents and bases above came to.
+        if (i < run.config.costs.size() && run.config.costs[i])
+            p["effective"] = ojson::parse(cost_model_to_json(*run.config.costs[i]));
         cost.push_back(std::move(p));
     }
     j["presets"] = {{"cost", cost}, {"memory", preset_json(run.config.memory_preset,

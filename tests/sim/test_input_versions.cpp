@@ -135,6 +135,50 @@ TEST_CASE("provenance: presets as loaded before tracing, with a derived preset's
     CHECK(p["bases"][0]["file"] == (dir / "hw" / "base.json").lexically_normal().string());
     CHECK(p["bases"][0]["contents"] == base_then);
     CHECK(json(r.point.provenance)["presets"]["memory"]["contents"]["name"] == "memory-optix7");
+    // The effective costs are the loaded ones, not the edited file's 99.
+    const double loaded = parse_json_text(read_text_file(RTCSIM_SOURCE_DIR "/configs/hw/turing-per-ray-guess.json"),
+                                          "guess")["cycles"]["blas_box_test"]["value"];
+    REQUIRE(loaded != 99.0);
+    CHECK(p["effective"]["cycles"]["blas_box_test"]["value"] == loaded);
+}
+
+TEST_CASE("provenance: a run priced under ada alone records ada's effective costs and the ampere and turing-calibrated it derives from") {
+    const fs::path dir = make_run("provenance_ada");
+    std::ofstream(dir / "run.json", std::ios::trunc) << R"({"name": "ada only",
+        "scene": {"type": "file", "curves": {"path": "curves.txt"}},
+        "cost": ["ada"], "memory": "memory-optix7",
+        "workload": {"width": 8, "height": 8, "spp": 1, "bounces": 0},
+        "output": {"images": false, "arrays": false}})";
+    const std::string config = (dir / "run.json").string();
+    const RunPlan plan = plan_config_text(config, read_text_file(config), {}, {});
+    RunContext ctx;
+    ctx.threads = 1;
+    ctx.quiet = true;
+    const RunResult r = run_point(plan, 0, ctx);
+    const json p = json(r.point.provenance)["presets"]["cost"][0];
+    const auto shipped = [](const char* name) {
+        return parse_json_text(read_text_file(std::string(RTCSIM_SOURCE_DIR "/configs/hw/") + name), name);
+    };
+    CHECK(p["name"] == "ada");
+    CHECK(p["contents"] == shipped("ada.json"));
+    REQUIRE(p["bases"].size() == 2);  // derived_from, then its own base
+    CHECK(p["bases"][0]["contents"] == shipped("ampere.json"));
+    CHECK(p["bases"][1]["contents"] == shipped("turing-calibrated.json"));
+    // Effective: every cost ada prices with, as a number, deltas applied.
+    const json& effective = p["effective"]["cycles"];
+    REQUIRE(!effective.empty());
+    for (const auto& [event, entry] : effective.items()) {
+        INFO(event);
+        const Event e = *event_from_name(event);
+        CHECK(entry["value"].get<double>() == r.costs[0].cycles[static_cast<std::size_t>(e)]);
+    }
+    // ada changes some cost from turing-calibrated's: the flattened costs
+    // are not simply the root's.
+    bool differs = false;
+    const json root = shipped("turing-calibrated.json");  // named: a temporary's items() would dangle
+    for (const auto& [event, entry] : root["cycles"].items())
+        if (entry.contains("value") && effective.contains(event) && effective[event]["value"] != entry["value"]) differs = true;
+    CHECK(differs);
 }
 
 }  // namespace RTCSIM_TEST_FILE
