@@ -93,7 +93,7 @@ void bind_calibrate(py::module_& m) {
         }
         py::gil_scoped_release release;
         // The waves stay in the runs: the fit shares them (aliasing pointers).
-        return calibrate_results(pointers, config, file, [&](RunResult& r, MethodRun& method) {
+        return calibrate_results(pointers, plan_calibrate(config, file), [&](RunResult& r, MethodRun& method) {
             return std::shared_ptr<const WarpTrace>(owners.at(&r), &method.frame.warp_trace);
         });
     }, py::arg("runs"), py::arg("config"), py::arg("file"),

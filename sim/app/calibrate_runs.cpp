@@ -28,12 +28,25 @@ std::string config_name(const std::string& file) {
 
 }  // namespace
 
-CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlohmann::json& config,
-                                     const std::string& file, const WarpTraceSource& warps) {
+CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file) {
     if (!config.is_object() || !config.contains("calibrate"))
         throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
+    CalibratePlan plan;
+    plan.file = file;
+    plan.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
+    // Loaded now, so refitting does not start from a file the fit's own
+    // output may overwrite, nor from an edit made while the runs traced.
+    if (!plan.desc.start.empty())
+        plan.start = load_cost_model(resolve_preset(plan.desc.start, file, "/calibrate/start"));
+    if (!plan.desc.output.empty()) plan.output = config_relative_path(plan.desc.output, file);
+    return plan;
+}
+
+CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const CalibratePlan& plan,
+                                     const WarpTraceSource& warps) {
+    const std::string& file = plan.file;
     CalibrationOutcome out;
-    out.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
+    out.desc = plan.desc;
     const CalibrateDesc& desc = out.desc;
     std::vector<CalibrationRun> fit_runs;
     std::vector<const RunResult*> fit_results;  // each fit run's RunResult
@@ -65,10 +78,9 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     if (!unmatched.empty()) throw InputError(file + ": /calibrate/targets: no run matches " + unmatched.front());
     if (fit_runs.empty()) throw InputError(file + ": /calibrate/targets: no run has a target");
     try {
-        // Start from the named preset (so refitting does not start from its own
-        // previous output), else from the run's primary cost preset.
-        const CostModel start = desc.start.empty() ? runs.front()->costs.front()
-                                                   : load_cost_model(resolve_preset(desc.start, file, "/calibrate/start"));
+        // Start from the named preset (loaded when planned), else from the
+        // run's primary cost preset.
+        const CostModel start = plan.start ? *plan.start : runs.front()->costs.front();
         // A cost the start preset does not price (a program by name in a
         // preset that prices operation classes, or the reverse) would be
         // fitted and then dropped from the written preset: refuse it.
@@ -103,19 +115,15 @@ CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const nlo
     return out;
 }
 
-std::string calibrate_output_path(const nlohmann::json& config, const std::string& file, bool force) {
-    if (!config.is_object() || !config.contains("calibrate") || !config["calibrate"].is_object()) return "";
-    const nlohmann::json& block = config["calibrate"];
-    if (!block.contains("output") || !block["output"].is_string() || block["output"].get<std::string>().empty())
-        return "";
-    const std::string path = config_relative_path(block["output"].get<std::string>(), file);
+std::string calibrate_output_path(const CalibratePlan& plan, bool force) {
+    if (plan.output.empty()) return "";
     std::error_code ec;
-    if (std::filesystem::exists(path, ec) && !force)
-        throw InputError(file + ": /calibrate/output: " + path + " exists" +
-                         (in_preset_dir(path) ? " and is a shipped preset" : "") +
+    if (std::filesystem::exists(plan.output, ec) && !force)
+        throw InputError(plan.file + ": /calibrate/output: " + plan.output + " exists" +
+                         (in_preset_dir(plan.output) ? " and is a shipped preset" : "") +
                          "; not overwriting it (the fitted preset is written to calibrated_preset.json in the "
-                         "output directory anyway; --force overwrites " + path + ")");
-    return path;
+                         "output directory anyway; --force overwrites " + plan.output + ")");
+    return plan.output;
 }
 
 }  // namespace rtc

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,24 +23,37 @@ namespace rtc {
 // used). The CLI moves them out of its runs; the Python module shares them.
 using WarpTraceSource = std::function<std::shared_ptr<const WarpTrace>(RunResult&, MethodRun&)>;
 
+// The `calibrate` block as planned, before any run: checked, its start
+// preset loaded and its output path resolved. The fit reads this and the
+// runs, never the config's JSON again.
+struct CalibratePlan {
+    std::string file;                // the config (messages, the fitted preset's fitted_on)
+    CalibrateDesc desc;
+    std::optional<CostModel> start;  // the block's `start` preset, as loaded when planned
+    std::string output;              // the block's `output` resolved against the config ("": none)
+};
+
+// Plans `config`'s `calibrate` block (read from `file`). Throws InputError
+// naming /calibrate/... on a bad block or a start preset that is not found
+// or not valid.
+[[nodiscard]] CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file);
+
 struct CalibrationOutcome {
     CalibrateDesc desc;
     CalibrationResult result;
     std::vector<std::string> skipped;  // labels of runs without a target (or not runnable)
 };
 
-// `config` holds the `calibrate` block (errors name `file` and /calibrate/...).
-// The fit starts from the block's `start` preset, else from the first run's
-// primary cost preset. Throws InputError on a bad block, a target that
-// matches no run, or no run with a target.
-[[nodiscard]] CalibrationOutcome calibrate_results(std::span<RunResult* const> runs,
-                                                   const nlohmann::json& config, const std::string& file,
+// The fit of `plan` on `runs`. It starts from the block's `start` preset,
+// else from the first run's primary cost preset. Throws InputError on a
+// target that matches no run, or no run with a target.
+[[nodiscard]] CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const CalibratePlan& plan,
                                                    const WarpTraceSource& warps);
 
 // Where `simulate calibrate` writes the fitted preset besides the output
-// directory: the block's `output`, relative to the config file; "" when it has
-// none. Throws InputError naming /calibrate/output when that file exists
-// (a shipped or installed preset above all) and `force` is false.
-[[nodiscard]] std::string calibrate_output_path(const nlohmann::json& config, const std::string& file, bool force);
+// directory: the block's `output`; "" when it has none. Throws InputError
+// naming /calibrate/output when that file exists (a shipped or installed
+// preset above all) and `force` is false.
+[[nodiscard]] std::string calibrate_output_path(const CalibratePlan& plan, bool force);
 
 }  // namespace rtc

@@ -41,12 +41,12 @@ std::string sanitize(const std::string& label) {
 
 // `simulate calibrate`: fit the config's chosen costs to its target speedups
 // by re-pricing the counts each run recorded (no tracing again).
-void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
-                    const std::string& file, const std::string& out, bool quiet, bool force) {
+void calibrate_runs(std::vector<RunResult>& runs, const CalibratePlan& plan, const std::string& out, bool quiet,
+                    bool force) {
     std::vector<RunResult*> pointers;
     for (RunResult& r : runs) pointers.push_back(&r);
     // The runs are done with their waves: move them into the fit.
-    const CalibrationOutcome fit = calibrate_results(pointers, config, file, [](RunResult&, MethodRun& m) {
+    const CalibrationOutcome fit = calibrate_results(pointers, plan, [](RunResult&, MethodRun& m) {
         return std::make_shared<const WarpTrace>(std::move(m.frame.warp_trace));
     });
     const std::string report = calibration_report_markdown(fit.result);
@@ -54,7 +54,7 @@ void calibrate_runs(std::vector<RunResult>& runs, const nlohmann::json& config,
     const std::string preset = calibrated_preset_json(fit.result);
     write_text_file((std::filesystem::path(out) / "calibrated_preset.json").string(), preset);
     if (!fit.desc.output.empty()) {
-        const std::string path = calibrate_output_path(config, file, force);
+        const std::string path = calibrate_output_path(plan, force);
         write_text_file(path, preset);
         if (!quiet) std::cerr << "fitted preset written to " << path << "\n";
     }
@@ -116,9 +116,7 @@ RunPlan plan_runs(nlohmann::json config, const std::string& file, const std::vec
     }
     if (config.contains("calibrate")) {
         try {
-            plan.calibrate = parse_calibrate(JsonReader(config, file).child("calibrate"));
-            if (!plan.calibrate->start.empty())  // found and valid before the runs the fit needs
-                (void)load_cost_model(resolve_preset(plan.calibrate->start, file, "/calibrate/start"));
+            plan.calibrate = plan_calibrate(config, file);  // the start preset loaded before the runs the fit needs
         } catch (const InputError& e) {
             note(e);
         }
@@ -164,7 +162,11 @@ int run_all(const CliOptions& cli) {
     RunPlan plan = plan_config_text(cli.config, read_text_file(cli.config), cli.sets, cli.limits);
     plan.command_line = cli.command_line;
     // Before any work: a calibrate output that would overwrite a file.
-    if (cli.calibrate) (void)calibrate_output_path(plan.config, cli.config, cli.limits.force);
+    if (cli.calibrate) {
+        if (!plan.calibrate)
+            throw InputError(cli.config + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
+        (void)calibrate_output_path(*plan.calibrate, cli.limits.force);
+    }
     const std::string out = cli.out ? *cli.out : default_output_dir(plan.parsed.front().name, "", cli.config);
     OutputDir owned(out, cli.limits.force, input_paths(plan.parsed, plan.file));  // locked until the run ends
     const int status = run_planned(plan, cli, out, nullptr);
@@ -249,7 +251,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         write_sweep_outputs(runs, point_dirs, out, &break_even);
     }
     write_sweep_plots(runs, out);
-    if (cli.calibrate) calibrate_runs(runs, config, plan.file, out, cli.quiet, cli.limits.force);
+    if (cli.calibrate) calibrate_runs(runs, *plan.calibrate, out, cli.quiet, cli.limits.force);
     std::cout << summary_table(runs).to_console();
     if (!cli.quiet) {
         std::vector<std::string> notes;  // each preset's once (report.json: resolution_notes)

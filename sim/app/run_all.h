@@ -3,7 +3,7 @@
 #pragma once
 
 #include "sim/app/cli.h"
-#include "sim/calibrate/calibrate_config.h"
+#include "sim/app/calibrate_runs.h"
 #include "sim/config/run_config.h"
 #include "sim/config/sweep.h"
 #include "sim/run/simulation.h"
@@ -28,7 +28,7 @@ struct RunPlan {
     nlohmann::json config;           // with the overrides, still with its sweep block
     std::vector<SweepPoint> points;  // one (empty label) for a run without a sweep
     std::vector<RunConfig> parsed;   // per point
-    std::optional<CalibrateDesc> calibrate;  // the `calibrate` block, checked, when there is one
+    std::optional<CalibratePlan> calibrate;  // the `calibrate` block planned (start preset loaded), when there is one
     WorkLimits limits;               // checked here and again once each scene is loaded
     WorkEstimate work;               // over every point
     std::vector<std::string> command_line;  // for the reports' provenance (empty: not from the CLI)

@@ -211,24 +211,31 @@ TEST_CASE("output directory: refused when not empty, --force clears only what si
     CHECK(fs::exists(foreign / "notes.txt"));
 }
 
+// A valid calibrate block writing its fitted preset to `output`.
+json calibrate_block(const std::string& output) {
+    return {{"calibrate", {{"parameters", {{{"events", {"context_switch"}}, {"min", 1}, {"max", 10}}}},
+                           {"targets", {{{"label", "tiny"}, {"speedup", 2.0}}}},
+                           {"output", output}}}};
+}
+
 TEST_CASE("calibrate: an existing output file is refused before tracing, unless --force") {
     const fs::path dir = scratch("calibrate");
     const std::string file = (dir / "fit.json").string();
-    const json config = {{"calibrate", {{"output", "../hw/turing-per-ray-guess.json"}}}};
-    CHECK(calibrate_output_path(config, file, false) == (dir.parent_path() / "hw" / "turing-per-ray-guess.json").string());
+    const CalibratePlan plan = plan_calibrate(calibrate_block("../hw/turing-per-ray-guess.json"), file);
+    CHECK(calibrate_output_path(plan, false) == (dir.parent_path() / "hw" / "turing-per-ray-guess.json").string());
     write(dir / "taken.json", "{}");
-    const json taken = {{"calibrate", {{"output", "taken.json"}}}};
-    CHECK_THROWS_WITH_AS((void)calibrate_output_path(taken, file, false),
+    const CalibratePlan taken = plan_calibrate(calibrate_block("taken.json"), file);
+    CHECK_THROWS_WITH_AS((void)calibrate_output_path(taken, false),
                          doctest::Contains((file + ": /calibrate/output: " + (dir / "taken.json").string() + " exists").c_str()),
                          InputError);
-    CHECK(calibrate_output_path(taken, file, true) == (dir / "taken.json").string());
+    CHECK(calibrate_output_path(taken, true) == (dir / "taken.json").string());
     const std::string shipped = std::string(RTCSIM_SOURCE_DIR) + "/configs/runs/x.json";
-    const json onto_shipped = {{"calibrate", {{"output", "../hw/turing-calibrated.json"}}}};
-    CHECK_THROWS_WITH_AS((void)calibrate_output_path(onto_shipped, shipped, false),
-                         doctest::Contains("is a shipped preset"), InputError);
+    const CalibratePlan onto_shipped = plan_calibrate(calibrate_block("../hw/turing-calibrated.json"), shipped);
+    CHECK_THROWS_WITH_AS((void)calibrate_output_path(onto_shipped, false), doctest::Contains("is a shipped preset"),
+                         InputError);
 }
 
-TEST_CASE("calibrate: the start preset is loaded and checked when the config is planned") {
+TEST_CASE("calibrate: the start preset is loaded and checked when the config is planned, and the fit uses that load") {
     const fs::path dir = scratch("calibrate_start");
     write(dir / "start.json", "{\"name\": \"broken\"}");
     json config = json::parse(read_text_file(kTiny));
@@ -240,8 +247,23 @@ TEST_CASE("calibrate: the start preset is loaded and checked when the config is 
     const std::string file = (dir / "run.json").string();
     CHECK_THROWS_WITH_AS((void)plan_runs(config, file), doctest::Contains((dir / "start.json").string().c_str()),
                          InputError);
-    config["calibrate"]["start"] = "turing-per-ray-guess";
-    CHECK(plan_runs(config, file).calibrate->start == "turing-per-ray-guess");
+    json start = json::parse(read_text_file(std::string(RTCSIM_SOURCE_DIR) + "/configs/hw/turing-per-ray-guess.json"));
+    start["name"] = "my-start";
+    write(dir / "start.json", start.dump());
+    const RunPlan plan = plan_runs(config, file);
+    REQUIRE(plan.calibrate);
+    CHECK(plan.calibrate->desc.start == "start.json");
+    REQUIRE(plan.calibrate->start);
+    // Edited after planning, as during the runs: the plan keeps what it loaded.
+    write(dir / "start.json", "{\"name\": \"broken\"}");
+    CHECK(plan.calibrate->start->name == "my-start");
+    RunContext ctx;
+    ctx.threads = 1;
+    ctx.quiet = true;
+    RunResult run = run_point(plan, 0, ctx);
+    RunResult* runs[] = {&run};
+    const CalibrationOutcome fit = calibrate_results(runs, *plan.calibrate, nullptr);
+    CHECK(fit.result.model.name.find("my-start") != std::string::npos);  // "<start>-calibrated" unless named
 }
 
 TEST_CASE("provenance: version, commit, effective config with defaults, presets, threads, date") {
