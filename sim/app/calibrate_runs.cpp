@@ -4,7 +4,6 @@
 #include "sim/config/run_config.h"
 #include "sim/methods/method.h"
 #include "sim/run/simulation.h"
-#include "sim/util/json_reader.h"
 #include "sim/util/paths.h"
 
 #include <filesystem>
@@ -27,20 +26,6 @@ std::string config_name(const std::string& file) {
 }
 
 }  // namespace
-
-CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file) {
-    if (!config.is_object() || !config.contains("calibrate"))
-        throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
-    CalibratePlan plan;
-    plan.file = file;
-    plan.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
-    // Loaded now, so refitting does not start from a file the fit's own
-    // output may overwrite, nor from an edit made while the runs traced.
-    if (!plan.desc.start.empty())
-        plan.start = load_cost_model(resolve_preset(plan.desc.start, file, "/calibrate/start"));
-    if (!plan.desc.output.empty()) plan.output = config_relative_path(plan.desc.output, file);
-    return plan;
-}
 
 CalibrationOutcome calibrate_results(std::span<RunResult* const> runs, const CalibratePlan& plan,
                                      const WarpTraceSource& warps) {

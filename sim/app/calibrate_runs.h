@@ -8,11 +8,9 @@
 #include "sim/calibrate/calibrate_config.h"
 #include "sim/run/simulation.h"
 
-#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <memory>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,21 +20,6 @@ namespace rtc {
 // A method's recorded waves for the fit, or nullptr (its per-ray counts are
 // used). The CLI moves them out of its runs; the Python module shares them.
 using WarpTraceSource = std::function<std::shared_ptr<const WarpTrace>(RunResult&, MethodRun&)>;
-
-// The `calibrate` block as planned, before any run: checked, its start
-// preset loaded and its output path resolved. The fit reads this and the
-// runs, never the config's JSON again.
-struct CalibratePlan {
-    std::string file;                // the config (messages, the fitted preset's fitted_on)
-    CalibrateDesc desc;
-    std::optional<CostModel> start;  // the block's `start` preset, as loaded when planned
-    std::string output;              // the block's `output` resolved against the config ("": none)
-};
-
-// Plans `config`'s `calibrate` block (read from `file`). Throws InputError
-// naming /calibrate/... on a bad block or a start preset that is not found
-// or not valid.
-[[nodiscard]] CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file);
 
 struct CalibrationOutcome {
     CalibrateDesc desc;

@@ -1,7 +1,7 @@
 // Command-line parsing for `simulate` (kept apart from main so it is tested).
 #pragma once
 
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 #include "sim/shard/shard_plan.h"
 
 #include <optional>

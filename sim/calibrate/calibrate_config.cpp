@@ -2,6 +2,9 @@
 // (see calibrate_config.h, docs/calibration.md).
 #include "sim/calibrate/calibrate_config.h"
 
+#include "core/input_error.h"
+#include "sim/util/paths.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -166,6 +169,20 @@ std::vector<std::string> unmatched_targets(const CalibrateDesc& d,
         if (!hit) out.push_back(t.where);
     }
     return out;
+}
+
+CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file) {
+    if (!config.is_object() || !config.contains("calibrate"))
+        throw InputError(file + ": /calibrate: missing (simulate calibrate needs a calibrate block)");
+    CalibratePlan plan;
+    plan.file = file;
+    plan.desc = parse_calibrate(JsonReader(config, file).child("calibrate"));
+    // Loaded now, so refitting does not start from a file the fit's own
+    // output may overwrite, nor from an edit made while the runs traced.
+    if (!plan.desc.start.empty())
+        plan.start = load_cost_model(resolve_preset(plan.desc.start, file, "/calibrate/start"));
+    if (!plan.desc.output.empty()) plan.output = config_relative_path(plan.desc.output, file);
+    return plan;
 }
 
 }  // namespace rtc

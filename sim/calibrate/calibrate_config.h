@@ -43,6 +43,21 @@ struct CalibrateDesc {
 // config_reader.child("calibrate"), so paths read /calibrate/...).
 [[nodiscard]] CalibrateDesc parse_calibrate(const JsonReader& block);
 
+// The `calibrate` block as planned, before any run: checked, its start
+// preset loaded and its output path resolved. The fit reads this and the
+// runs, never the config's JSON again.
+struct CalibratePlan {
+    std::string file;                // the config (messages, the fitted preset's fitted_on)
+    CalibrateDesc desc;
+    std::optional<CostModel> start;  // the block's `start` preset, as loaded when planned
+    std::string output;              // the block's `output` resolved against the config ("": none)
+};
+
+// Plans `config`'s `calibrate` block (read from `file`). Throws InputError
+// naming /calibrate/... on a bad block or a start preset that is not found
+// or not valid.
+[[nodiscard]] CalibratePlan plan_calibrate(const nlohmann::json& config, const std::string& file);
+
 // The fit options a CalibrateDesc asks for.
 [[nodiscard]] CalibrationOptions calibration_options(const CalibrateDesc& desc);
 

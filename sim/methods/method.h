@@ -80,7 +80,7 @@ public:
 };
 
 // A method's own share of the simulator's peak memory, for the work estimate
-// (sim/run/work_estimate.h) before the scene is converted: the instances it
+// (sim/config/work_estimate.h) before the scene is converted: the instances it
 // will build (a method over the preset's instance limit is not built, so
 // costs nothing) and the bytes its structures and their build take beyond
 // the per-primitive figure every method shares. Upper bounds, from measured

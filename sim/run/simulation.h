@@ -12,7 +12,7 @@
 #include "sim/run/area_stats.h"
 #include "sim/run/hit_agreement.h"
 #include "sim/run/sampled_run.h"
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 
 #include <array>
 #include <functional>

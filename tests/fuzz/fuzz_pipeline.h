@@ -16,7 +16,7 @@
 #include "sim/config/run_config.h"
 #include "sim/config/scene_config.h"
 #include "sim/config/sweep.h"
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 #include "sim/config/workload_config.h"
 
 #include <algorithm>

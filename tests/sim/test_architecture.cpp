@@ -107,7 +107,7 @@ TEST_CASE("architecture: files over ~400 lines and folders over ~15 files are re
 TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed plan of sim/config)") {
     // A run is handed a RunConfig: scene description, absolute paths, loaded
     // presets (docs/architecture.md, "The path of a config"). Parsing,
-    // resolving and loading belong to sim/config and the planner in sim/app.
+    // resolving and loading belong to sim/config and its planner (plan.h).
     const std::string forbidden[] = {"sim/util/json_reader.h", "sim/util/json_file.h", "sim/util/paths.h"};
     int files = 0;
     for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / "run")) {
@@ -124,6 +124,33 @@ TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed
             if (line.rfind("#include", 0) != 0) continue;
             for (const std::string& what : forbidden)
                 CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/run must not include " + what));
+        }
+    }
+    CHECK(files > 0);
+}
+
+TEST_CASE("architecture: sim/app reads no config JSON after planning (the plan of sim/config is its input)") {
+    // The planner (sim/config/plan.h) parses the config, its points and its
+    // calibrate block; sim/app runs, fits and reports from the plan. It
+    // writes JSON (report.json, shard.json) but reads no config block:
+    // no JSON reader, and none of the block parsers.
+    const std::string forbidden[] = {"JsonReader", "parse_run_config(", "parse_calibrate(", "load_cost_model(",
+                                     "load_memory_model("};
+    int files = 0;
+    for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / "app")) {
+        if (!f.is_regular_file() || !is_source(f.path())) continue;
+        ++files;
+        std::ifstream in(f.path());
+        std::string line;
+        int n = 0;
+        while (std::getline(in, line)) {
+            ++n;
+            CAPTURE(f.path().filename().string());
+            CAPTURE(n);
+            CHECK_MESSAGE(line.find("sim/util/json_reader.h") == std::string::npos,
+                          "sim/app must not include sim/util/json_reader.h");
+            for (const std::string& what : forbidden)
+                CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/app must not call " + what));
         }
     }
     CHECK(files > 0);

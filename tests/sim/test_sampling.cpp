@@ -10,7 +10,7 @@
 #include "sim/app/run_all.h"
 #include "sim/app/simulate_main.h"
 #include "sim/execution/tile_sample.h"
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 #include "sim/util/json_file.h"
 
 #include <doctest/doctest.h>

@@ -10,7 +10,7 @@
 #include "sim/util/json_file.h"
 #include "sim/workload/ray_file.h"
 #include "sim/app/run_all.h"
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 
 #include <doctest/doctest.h>
 

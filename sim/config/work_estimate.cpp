@@ -1,5 +1,5 @@
 // Work estimates and their ceilings (see work_estimate.h).
-#include "sim/run/work_estimate.h"
+#include "sim/config/work_estimate.h"
 
 #include "core/input_error.h"
 #include "core/sinks.h"
