@@ -13,6 +13,7 @@
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
 #include "sim/util/process_memory.h"
+#include "sim/util/version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -287,6 +288,7 @@ int run_embree_hair(const Cli& cli) {
     std::printf("  (load average %.2f)\n", load_average());
     if (!cli.json_file.empty()) {
         const nlohmann::json out = {{"config", cli.embree_hair}, {"repeat", cli.bench.repeat},
+                                    {"git_commit", std::string(git_commit()) + (git_dirty() ? "+dirty" : "")},
                                     {"cores", hardware_threads()}, {"scenes", scenes}};
         std::ofstream f(cli.json_file);
         f << out.dump(2) << "\n";
