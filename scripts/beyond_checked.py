@@ -4,8 +4,10 @@ source, the scene, the model's prediction with its band, the figure and the
 error. Called by `scripts/make_beyond.py checked`; standard library only.
 
 Each kind of check is one function that takes the paths of its runs and
-returns rows (dicts with the keys of COLUMNS); CHECKS maps the name given on
-the command line (`NAME=PATH[,PATH...]`) to it. A new check (say oriented
+returns its rows (see row()), the stamp of the runs that made them and any
+blocks of its own (the Embree check's measurements in detail,
+"checked-embree"); CHECKS maps the name given on the command line
+(`NAME=PATH[,PATH...]`) to it. A new check (say oriented
 boxes over triangles, from a results.csv) is one more function and one more
 entry. A figure the model misses stays in the table, with why in its note.
 Nothing here feeds back into a preset: these are checks, not targets.
@@ -111,7 +113,7 @@ def lss_dots_rows(run_dir, band_dir):
             out.append(row("DOTS memory over LSS", perf, scene, m, None, point(3388.0 / 2450.0, "1.38x"),
                            "all video memory (frame buffers, denoiser, textures), not the geometry alone"))
     return out, "`configs/runs/lss_vs_dots.json` (%s) at commit %s" % (_first_preset(next(iter(runs.values()))),
-                                                                      _commit(list(runs.values())))
+                                                                      _commit(list(runs.values()))), {}
 
 
 # --- Embree's oriented hair BVH (configs/runs/embree_hair.json) ---------------
@@ -155,8 +157,52 @@ def embree_rows(bench_json, run_dir):
                        "BVH's nodes; the hair BVHs alone: %.2fx" % (nodes_a / nodes_o, emb["hair_bvh_bytes_ratio"])))
         out.append(row("oriented over aligned BVH, memory", wald, scene, m, None, about(1.5),
                        "the model: +24 B per oriented child (memory-optix7), Embree's node layout"))
-    return out, "`configs/runs/embree_hair.json` (%s) at commit %s and `bench --embree-hair` at commit %s" % (
+    stamp = "`configs/runs/embree_hair.json` (%s) at commit %s and `bench --embree-hair` at commit %s" % (
         _first_preset(next(iter(runs.values()))), _commit(list(runs.values())), bench.get("git_commit", "unknown"))
+    return out, stamp, {"checked-embree": embree_tables(bench, runs) + "\n\nMade by `scripts/make_beyond.py checked` "
+                        "from " + stamp + ".\n"}
+
+
+def embree_tables(bench, runs):
+    """What bench --embree-hair measured per scene (Embree's statistics, builds, memory, rates) and, beside it,
+    what the simulator counted and predicts on the same rays."""
+    lines = ["| scene | segments, rays | Embree BVH | nodes aligned + oriented, leaves | Embree SAH | hair BVH "
+             "| Embree holds (+ capsules) | build, %d threads | Mrays/s, %d threads | oriented / aligned |" % (
+                 bench["scenes"][0]["embree"]["build_threads"], max(x["threads"] for x in
+                                                                    bench["scenes"][0]["embree"]["rates"])),
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for e in bench["scenes"]:
+        em = e["embree"]
+        rate = max(em["rates"], key=lambda x: x["threads"])
+        for side in ("aligned", "oriented"):
+            sd, v = em[side], em[side]["bvh"]
+            first = side == "aligned"
+            mem = "%.1f MB" % (sd["embree_bytes"] / 1e6)
+            if first:
+                mem += " (+ %.1f)" % ((sd["memory_bytes"] - sd["embree_bytes"]) / 1e6)
+            ratio = "" if first else "speed %.2fx [%.2f-%.2f], build %.2fx, memory %.2fx" % (
+                tuple(rate["speedup"]) + (em["build_ratio"][0], em["memory_ratio"]))
+            lines.append("| %s | %s | %s `%s` | %s + %s, %s | %.1f | %.2f MB | %s | %.2f s | %.3g [%.3g-%.3g] | %s |" % (
+                e["scene"] if first else "", "{:,}, {:,}".format(e["segments"], em["rays"]) if first else "",
+                side, sd["device_config"].split(",")[-1], format(v["aligned_nodes"], ","),
+                format(v["oriented_nodes"], ","), format(v["leaves"], ","), v["sah"], v["bytes"] / 1e6, mem,
+                sd["build_seconds"], *rate[side + "_mrays"], ratio))
+    lines += ["", "| scene | ref: aligned box tests, programs per ray | Embree aligned: callbacks per ray "
+              "| obb-nodes: aligned + oriented box tests, programs per ray | model speedup | model memory |",
+              "|---|---|---|---|---|---|"]
+    for e in bench["scenes"]:
+        r = runs.get(e["scene"])
+        if r is None:
+            continue
+        ref, on = e["rtcsim"]["ref"], e["rtcsim"]["obb-nodes"]
+        p = _first_preset(r)
+        s, iv = _speedup(r, "obb-nodes", p)
+        mem_o, mem_r = _memory(r, "obb-nodes"), _memory(r, "ref")
+        lines.append("| %s | %.1f, %.2f | %.2f | %.1f + %.2f, %.2f | %.2fx [%.2f-%.2f] (%s) | %.2fx (%.1f / %.1f MiB) |" % (
+            e["scene"], ref["blas_box_tests"], ref["is_calls"], e["embree"]["aligned"]["capsule_tests_per_ray"],
+            on["blas_box_tests"], on["obb_box_tests"], on["is_calls"], s, iv[0], iv[1], p, mem_o / mem_r,
+            mem_o / 2 ** 20, mem_r / 2 ** 20))
+    return "\n".join(lines)
 
 
 CHECKS = {
@@ -199,20 +245,23 @@ def table(rows):
 
 
 def block(args):
-    """The block's text from `NAME=PATH[,PATH...]` arguments, one per check."""
-    rows, stamps = [], []
+    """The blocks' texts from `NAME=PATH[,PATH...]` arguments, one per check: "checked" (the table) and the
+    checks' own blocks (their measurements in detail)."""
+    rows, stamps, blocks = [], [], {}
     for a in args:
         name, _, paths = a.partition("=")
         if name not in CHECKS or not paths:
             raise SystemExit("checked: expected NAME=PATH[,PATH...] with NAME one of %s (%s), got %r" % (
                 ", ".join(CHECKS), "; ".join("%s=%s" % (k, v[1]) for k, v in CHECKS.items()), a))
         fn = CHECKS[name][0]
-        got, stamp = fn(*paths.split(","))
+        got, stamp, extra = fn(*paths.split(","))
         rows += got
         stamps.append(stamp)
-    text = table(rows)
-    return (text + "\n\nmodel / measured: the prediction over the figure (over a local measurement's median; for "
-            "a published range, 1.00 within it, else against its nearer end). agrees: the model's band (the "
-            "prediction itself where it has none) meets the figure's range ('about X' read as X +-%d %%, a "
-            "local measurement as the median of its alternated pairs, their range in brackets). Made by `scripts/make_beyond.py checked` from %s.\n"
-            % (round(100 * ABOUT), "; ".join(stamps)))
+        blocks.update(extra)
+    legend = ("model / measured: the prediction over the figure (over a local measurement's median; for a "
+              "published range, 1.00 within it, else against its nearer end). agrees: the model's band (the "
+              "prediction itself where it has none) meets the figure's range ('about X' read as X +-%d %%, a "
+              "local measurement as the median of its alternated pairs, their range in brackets). Made by "
+              "`scripts/make_beyond.py checked` from %s." % (round(100 * ABOUT), "; ".join(stamps)))
+    blocks["checked"] = table(rows) + "\n\n" + legend + "\n"
+    return blocks

@@ -11,7 +11,8 @@ usage: scripts/make_beyond.py checked [--update docs/beyond.md] NAME=PATH[,PATH.
   The table "checked against measurements" (scripts/beyond_checked.py): each
   external figure beside the model's prediction; NAME is a kind of check
   (lss-dots=RUN_DIR,BAND_DIR; embree=BENCH_JSON,RUN_DIR); --update replaces
-  the block "checked".
+  the block "checked" and the checks' own ("checked-embree": bench
+  --embree-hair's figures beside the simulator's counts).
 usage: scripts/make_beyond.py [--svg PLOT.svg] [--update docs/beyond.md] RUN_DIR [RUN_DIR ...] > tables.md
   Part II (section "cluster: the paper's future work"); --update replaces
   its generated blocks "cluster" (the orientation table and the verdicts)
@@ -329,11 +330,11 @@ def main():
             update, args = args[2], args[:1] + args[3:]
         if len(args) < 2:
             sys.exit(__doc__)
-        text = beyond_checked.block(args[1:])
+        texts = beyond_checked.block(args[1:])
         if update:
-            beyond_hardware.splice(update, {"checked": text})
+            beyond_hardware.splice(update, texts)
         else:
-            sys.stdout.write(text)
+            sys.stdout.write("\n".join(texts.values()))
         return
     svg = update = None
     while len(args) >= 2 and args[0] in ("--svg", "--update"):
