@@ -28,7 +28,8 @@
 // every BVH's statistics (node counts by kind, leaves, SAH, bytes), parsed
 // here; the memory monitor callback gives the bytes Embree holds after the
 // build. It does not expose traversal counts (node visits, primitive tests:
-// its statistics counters are compiled out of release builds), so the only
+// its statistics counters need a build with EMBREE_STAT_COUNTERS, off by
+// default, and no device property gives them), so the only
 // per-ray count here is the aligned side's callbacks, counted by the callback.
 #pragma once
 

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <variant>
 
 namespace rtc {
