@@ -276,7 +276,8 @@ int run_embree_hair(const Cli& cli) {
     }
     std::vector<BenchRun> runs = hair_runs_of_config(cli.embree_hair);
     std::string listed;
-    for (const unsigned t : cli.bench.threads) listed += (listed.empty() ? "" : ",") + std::to_string(t ? t : hardware_threads());
+    for (const unsigned t : cli.bench.threads)
+        listed += (listed.empty() ? "" : ",") + std::to_string(t ? t : hardware_threads());
     std::printf("bench --embree-hair %s: threads %s (%u cores), %d alternated pairs; load average %.2f\n",
                 cli.embree_hair.c_str(), listed.c_str(), hardware_threads(), cli.bench.repeat, load_average());
     nlohmann::json scenes = nlohmann::json::array();

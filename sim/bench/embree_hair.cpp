@@ -45,7 +45,8 @@ std::vector<EmbreeBvhStats> parse_embree_statistics(const std::string& printed) 
         if (line.rfind("building BVH", 0) == 0) {
             EmbreeBvhStats s;
             const std::size_t lt = line.find('<'), gt = line.find('>'), using_at = line.find(" using ");
-            if (lt != std::string::npos && gt != std::string::npos && gt > lt) s.primitive = line.substr(lt + 1, gt - lt - 1);
+            if (lt != std::string::npos && gt != std::string::npos && gt > lt)
+                s.primitive = line.substr(lt + 1, gt - lt - 1);
             if (using_at != std::string::npos) {
                 s.builder = line.substr(using_at + 7);
                 s.builder = s.builder.substr(0, s.builder.find(' '));
