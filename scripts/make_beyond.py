@@ -7,6 +7,12 @@ usage: scripts/make_beyond.py hardware [--update docs/beyond.md] RUN_DIR > part1
   --update replaces the generated blocks "hardware-presets" (the presets'
   deltas, read from configs/hw) and "hardware" (every table of the runs) of
   that file (between their markers), each ending with its commit and presets.
+usage: scripts/make_beyond.py checked [--update docs/beyond.md] NAME=PATH[,PATH...] ... > checked.md
+  The table "checked against measurements" (scripts/beyond_checked.py): each
+  external figure beside the model's prediction; NAME is a kind of check
+  (lss-dots=RUN_DIR,BAND_DIR; embree=BENCH_JSON,RUN_DIR); --update replaces
+  the block "checked" and the checks' own ("checked-embree": bench
+  --embree-hair's figures beside the simulator's counts).
 usage: scripts/make_beyond.py [--svg PLOT.svg] [--update docs/beyond.md] RUN_DIR [RUN_DIR ...] > tables.md
   Part II (section "cluster: the paper's future work"); --update replaces
   its generated blocks "cluster" (the orientation table and the verdicts)
@@ -29,6 +35,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import beyond_checked  # noqa: E402 (next to this script): the "checked" block
 import beyond_hardware  # noqa: E402 (next to this script): splice, last_change
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
@@ -316,6 +323,18 @@ def main():
             beyond_hardware.splice(update, texts)
         else:
             sys.stdout.write(texts["hardware-presets"] + "\n" + texts["hardware"])
+        return
+    if args[:1] == ["checked"]:
+        update = None
+        if len(args) >= 3 and args[1] == "--update":
+            update, args = args[2], args[:1] + args[3:]
+        if len(args) < 2:
+            sys.exit(__doc__)
+        texts = beyond_checked.block(args[1:])
+        if update:
+            beyond_hardware.splice(update, texts)
+        else:
+            sys.stdout.write("\n".join(texts.values()))
         return
     svg = update = None
     while len(args) >= 2 and args[0] in ("--svg", "--update"):

@@ -9,9 +9,11 @@
 #include "sim/bench/bench_compare.h"
 #include "sim/bench/bench_run.h"
 #include "sim/bench/embree_bench.h"
+#include "sim/bench/embree_hair_bench.h"
 #include "sim/methods/method.h"
 #include "sim/util/paths.h"
 #include "sim/util/process_memory.h"
+#include "sim/util/version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -55,6 +57,11 @@ constexpr const char* kHelp =
     "  --embree       trace each case's rays through Embree 3 too (ref, obb; default cases\n"
     "                 1,2,3): rates side by side, timed alternately, their ratio, and a\n"
     "                 check of the hits (exit 1 if they differ; 77 if built without Embree)\n"
+    "  --embree-hair CONFIG  Embree 3's oriented hair BVH against its axis-aligned BVH over\n"
+    "                 the same capsules, on the rays of the simulator's ref frame of each\n"
+    "                 scene of CONFIG (e.g. configs/runs/embree_hair.json): builds, memory,\n"
+    "                 Embree's BVH statistics, rates and their ratio, beside ref's and\n"
+    "                 obb-nodes' counted tests (with --json: the figures; 77 without Embree)\n"
     "  --warp-price   time per-ray and warp traces of each case's frame alternately (default\n"
     "                 cases 1,2; warp under --warp-preset): their rates and warp's time over\n"
     "                 per-ray's, pair by pair (exit 1 if their event counts differ)\n"
@@ -66,6 +73,7 @@ struct Cli {
     bool scale = false;
     bool embree = false;  // --embree
     bool warp_price = false;  // --warp-price
+    std::string embree_hair;  // --embree-hair CONFIG
     BenchOptions bench;
     std::string data = data_root().string();  // as simulate's "data:" paths
     std::string json_file;
@@ -99,7 +107,8 @@ Cli parse(int argc, char** argv) {
     CLI::App app{"bench"};
     app.set_help_flag();  // kHelp is the help text
     bool help = false, scale = false, embree = false, warp_price = false;
-    std::string cases, threads, repeat, data, methods, execution, warp_preset = "turing-calibrated", pixels, json;
+    std::string cases, threads, repeat, data, methods, execution, warp_preset = "turing-calibrated", pixels, json,
+        embree_hair;
     std::vector<std::string> compare;
     app.add_flag("-h,--help", help);
     app.add_flag("--scale", scale);
@@ -108,7 +117,7 @@ Cli parse(int argc, char** argv) {
     for (const auto& [name, value] :
          {std::pair{"--cases", &cases}, {"--threads", &threads}, {"--repeat", &repeat}, {"--data", &data},
           {"--methods", &methods}, {"--execution", &execution}, {"--warp-preset", &warp_preset},
-          {"--pixels", &pixels}, {"--json", &json}})
+          {"--pixels", &pixels}, {"--json", &json}, {"--embree-hair", &embree_hair}})
         app.add_option(name, *value)->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     app.add_option("--compare", compare)->expected(2);
     try {
@@ -149,6 +158,12 @@ Cli parse(int argc, char** argv) {
     cli.scale = scale;
     cli.embree = embree;
     cli.warp_price = warp_price;
+    if (given("--embree-hair")) {
+        cli.embree_hair = value("--embree-hair", embree_hair);
+        if (embree || warp_price || scale || given("--cases") || given("--execution") || given("--methods"))
+            throw InputError("bench: --embree-hair runs its config's scenes alone (drop --embree, --warp-price, "
+                             "--scale, --cases, --execution and --methods)");
+    }
     if (embree && !given("--cases")) cli.cases = {1, 2, 3};
     if (warp_price && !given("--cases")) cli.cases = {1, 2};
     if (given("--cases")) {
@@ -251,6 +266,39 @@ nlohmann::json to_json(const RunFigures& r) {
     return j;
 }
 
+// `--embree-hair CONFIG`: every scene of the config through both of Embree's
+// hair BVHs (sim/bench/embree_hair_bench.h); exit 1 if their hits differ.
+int run_embree_hair(const Cli& cli) {
+    if (!embree_built()) {
+        std::printf("bench: --embree-hair: this bench was built without Embree 3 (apt-get install "
+                    "libembree-dev, then configure again)\n");
+        return 77;
+    }
+    std::vector<BenchRun> runs = hair_runs_of_config(cli.embree_hair);
+    std::string listed;
+    for (const unsigned t : cli.bench.threads)
+        listed += (listed.empty() ? "" : ",") + std::to_string(t ? t : hardware_threads());
+    std::printf("bench --embree-hair %s: threads %s (%u cores), %d alternated pairs; load average %.2f\n",
+                cli.embree_hair.c_str(), listed.c_str(), hardware_threads(), cli.bench.repeat, load_average());
+    nlohmann::json scenes = nlohmann::json::array();
+    bool ok = true;
+    for (BenchRun& run : runs) {
+        if (cli.pixels > 0) run.config["workload"]["width"] = run.config["workload"]["height"] = cli.pixels;
+        ok = compare_hair_bvhs(run, cli.bench, scenes) && ok;
+    }
+    std::printf("  (load average %.2f)\n", load_average());
+    if (!cli.json_file.empty()) {
+        const nlohmann::json out = {{"config", cli.embree_hair}, {"repeat", cli.bench.repeat},
+                                    {"git_commit", std::string(git_commit()) + (git_dirty() ? "+dirty" : "")},
+                                    {"cores", hardware_threads()}, {"scenes", scenes}};
+        std::ofstream f(cli.json_file);
+        f << out.dump(2) << "\n";
+        if (!f) throw InputError("bench: cannot write " + cli.json_file);
+    }
+    if (!ok) std::printf("bench: Embree's two hair BVHs disagree on the hits (HITS DIFFER above)\n");
+    return ok ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -259,6 +307,7 @@ int main(int argc, char** argv) {
     try {
         Cli cli = parse(argc, argv);
         if (!cli.compare_a.empty()) return compare_bench_json(cli.compare_a, cli.compare_b);
+        if (!cli.embree_hair.empty()) return run_embree_hair(cli);
         if (cli.embree && !embree_built()) {
             std::printf("bench: --embree: this bench was built without Embree 3 (apt-get install "
                         "libembree-dev, then configure again)\n");
