@@ -18,7 +18,46 @@ UNITS = [("shader", "shader (incl. AMD's loop)"), ("rt_unit", "RT unit"), ("hand
 MIB = 1024.0 * 1024.0
 
 
-def load(directory):
+def load(directory, extra=()):
+    """The runs of `directory`; each folder of `extra` (beyond_rdna4.json's output: presets that build other BVH
+    widths trace their own runs) adds its presets' columns to the run of the same label."""
+    runs = _load_one(directory)
+    by = {label(r): r for r in runs}
+    for d in extra:
+        for o in _load_one(d):
+            r = by.get(label(o))
+            if r is None:
+                raise SystemExit("%s: run %s has no counterpart in %s" % (d, label(o), directory))
+            _merge(r, o, d)
+    return runs
+
+
+def _merge(r, o, directory):
+    """Adds run `o`'s preset columns (cycles, speedups, intervals, break-even maps) to run `r`, placed before
+    hypothetical-obb; `o`'s BVH width is kept per preset (methods.<m>.width_by_preset)."""
+    names = preset_names(o)
+    for method, mo in o["methods"].items():
+        m = r["methods"].setdefault(method, mo)
+        cycles = dict(m.get("cycles", {}))
+        for n in names:
+            if n in mo.get("cycles", {}):
+                cycles[n] = mo["cycles"][n]
+        order = [k for k in cycles if k not in names]
+        at = order.index("hypothetical-obb") if "hypothetical-obb" in order else len(order)
+        order[at:at] = [n for n in names if n in cycles]
+        m["cycles"] = {k: cycles[k] for k in order}
+        if mo.get("structures"):
+            m.setdefault("width_by_preset", {}).update({n: mo["structures"]["width"] for n in names})
+    for key in ("speedup_over_ref", "speedup_interval_over_ref"):
+        for method, sp in o.get(key, {}).items():
+            r.setdefault(key, {}).setdefault(method, {}).update({n: v for n, v in sp.items() if n in names})
+    for b in o.get("break_even", []):
+        b["_dir"] = directory
+        r.setdefault("break_even", []).append(b)
+    r.setdefault("_extra", []).append(o)
+
+
+def _load_one(directory):
     runs = []
     for path in sorted(glob.glob(os.path.join(directory, "*", "report.json"))):
         with open(path) as f:
@@ -40,14 +79,19 @@ def label(r):
 
 
 def provenance(runs):
+    every = runs + [o for r in runs for o in r.get("_extra", [])]
     commits = sorted({r["provenance"]["git_commit"] + ("+dirty" if r["provenance"].get("git_dirty") else "")
-                      for r in runs})
-    presets = runs[0]["cost_presets"] if isinstance(runs[0]["cost_presets"], list) else list(runs[0]["cost_presets"])
-    names = [p if isinstance(p, str) else p.get("name") for p in presets]
-    return ("Made by `scripts/make_beyond.py hardware` from %d runs of `configs/runs/beyond.json` at commit %s; "
-            "cost presets %s, memory preset %s." % (len(runs), ", ".join(commits), ", ".join(names),
-                                                 runs[0]["memory_preset"] if isinstance(runs[0]["memory_preset"], str)
-                                                 else runs[0]["memory_preset"].get("name")))
+                      for r in every})
+    configs = sorted({os.path.basename(r["provenance"].get("config_file", "beyond.json")) for r in every})
+    names = preset_names(runs[0])
+    widths = sorted({(n, w) for r in runs for m in r["methods"].values() for n, w in m.get("width_by_preset", {}).items()})
+    return ("Made by `scripts/make_beyond.py hardware` from %d runs of %s at commit %s; "
+            "cost presets %s, memory preset %s%s." % (len(every), ", ".join("`configs/runs/%s`" % c for c in configs),
+                                                   ", ".join(commits), ", ".join(names),
+                                                   runs[0]["memory_preset"] if isinstance(runs[0]["memory_preset"], str)
+                                                   else runs[0]["memory_preset"].get("name"),
+                                                   "".join("; %s's columns from its own %d-wide BVHs (IS/ray and memory "
+                                                           "columns: the 4-wide runs')" % w for w in widths)))
 
 
 def preset_names(r):
@@ -228,7 +272,7 @@ def obb_vs_ref_table(runs, directory, kinds=("capsule",)):
         for m in r.get("break_even", []):
             if not m["name"].startswith("obb_vs_ref"):
                 continue
-            with open(os.path.join(directory, r["_label"], m["cells"])) as f:
+            with open(os.path.join(m.get("_dir", directory), r["_label"], m["cells"])) as f:
                 cells = json.load(f)
             row, row_doubt = _crossings(cells, "x", m["mark"]["y"])
             col, col_doubt = _crossings(cells, "y", m["mark"]["x"])
@@ -277,7 +321,7 @@ def answers_table(runs, directory, hair=("capsule sintel", "link sintel"), bundl
             m_ = next((x for x in r.get("break_even", []) if x["name"].startswith("obb_vs_ref") and x["preset"] == p), None)
             if not m_:
                 continue
-            with open(os.path.join(directory, r["_label"], m_["cells"])) as f:
+            with open(os.path.join(m_.get("_dir", directory), r["_label"], m_["cells"])) as f:
                 cells = json.load(f)
             row, rd = _crossings(cells, "x", m_["mark"]["y"])
             col, cd = _crossings(cells, "y", m_["mark"]["x"])
@@ -335,7 +379,12 @@ def preset_table(names, root):
         feats = j.get("features", [])
         features[name] = feats
         deltas = [_delta_text(d) for d in j.get("deltas", [])]
-        for key, v in (j.get("execution") or {}).items() if parent else ():
+        execution = dict((j.get("execution") or {}).items()) if parent else {}
+        for sub, v in execution.pop("sm", {}).items():  # the SM block, entry by entry
+            execution["sm." + sub] = v
+        for key, v in execution.items():
+            if isinstance(v, dict) and isinstance(v.get("value"), dict):
+                v = dict(v, value=["%s %s" % kv for kv in v["value"].items()])
             if isinstance(v, dict) and "value" in v:
                 val = v["value"]
                 tag, short = _short_source(v.get("source", ""))
@@ -352,8 +401,8 @@ def preset_table(names, root):
     return "\n".join(lines)
 
 
-def report(directory):
-    runs = load(directory)
+def report(directory, extra=()):
+    runs = load(directory, extra)
     parts = [provenance(runs), "", "### Speedup over ref, 90 % interval", "", speedup_table(runs), "",
              "### Where the cycles go", "", decomposition(runs), "### Memory on the Sintel hair (memory preset of the run)",
              "", memory_table(runs), "", "### Which method to build", "", recommendations(runs), "",
@@ -364,9 +413,9 @@ def report(directory):
     return "\n".join(parts) + "\n"
 
 
-def presets_block(directory, root):
+def presets_block(directory, root, extra=()):
     """The preset table of the runs' cost presets, read from configs/hw, with its stamp."""
-    runs = load(directory)
+    runs = load(directory, extra)
     names = preset_names(runs[0])
     return (preset_table(names, root) + "\n\nMade by `scripts/make_beyond.py hardware` from `configs/hw/<preset>.json` "
             "of the cost presets of the runs below (%s), as last changed at commit %s; the runs below are of "
@@ -388,11 +437,12 @@ def last_change(files, root):
     return (commit or "uncommitted") + (" (+ uncommitted changes)" if dirty else "")
 
 
-def blocks(directory, root):
-    """{generated block name: text} of docs/beyond.md Part I."""
-    runs = load(directory)
+def blocks(directory, root, extra=()):
+    """{generated block name: text} of docs/beyond.md Part I; `extra`: folders of runs of presets with their own
+    BVH width (beyond_rdna4.json), merged in as columns."""
+    runs = load(directory, extra)
     answers = answers_table(runs, directory)
-    out = {"hardware": report(directory), "hardware-presets": presets_block(directory, root)}
+    out = {"hardware": report(directory, extra), "hardware-presets": presets_block(directory, root, extra)}
     if answers:
         out["hardware-answers"] = answers + "\n\n" + provenance(runs) + "\n"
     return out

@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Collects report.json files into the Markdown tables of docs/beyond.md.
 
-usage: scripts/make_beyond.py hardware [--update docs/beyond.md] RUN_DIR > part1.md
+usage: scripts/make_beyond.py hardware [--update docs/beyond.md] RUN_DIR [RDNA4_DIR] > part1.md
   Part I (the hardware after Turing): RUN_DIR is the output of
-  build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py);
+  build/simulate configs/runs/beyond.json --out RUN_DIR (scripts/beyond_hardware.py),
+  RDNA4_DIR that of configs/runs/beyond_rdna4.json (rdna4 builds 8-wide BVHs, so
+  it traces its own runs; its columns are merged in beside the others);
   --update replaces the generated blocks "hardware-presets" (the presets'
   deltas, read from configs/hw) and "hardware" (every table of the runs) of
   that file (between their markers), each ending with its commit and presets.
@@ -314,11 +316,11 @@ def main():
     args = sys.argv[1:]
     if args[:1] == ["hardware"]:
         update = None
-        if len(args) == 4 and args[1] == "--update":
+        if len(args) >= 4 and args[1] == "--update":
             update, args = args[2], args[:1] + args[3:]
-        if len(args) != 2:
+        if len(args) < 2:
             sys.exit(__doc__)
-        texts = beyond_hardware.blocks(args[1], ROOT)
+        texts = beyond_hardware.blocks(args[1], ROOT, args[2:])
         if update:
             beyond_hardware.splice(update, texts)
         else:

@@ -163,7 +163,9 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
                         report_json(r, &break_even.back()).dump(2) + "\n");
         traced.reset();
         // (Ray and hit files are written while tracing: such points trace.)
+        // (A preset may choose the BVH width: execution.bvh_width.)
         if (i + 1 < points.size() && same_trace(points[i].config, points[i + 1].config) &&
+            parsed[i].build.tlas.width == parsed[i + 1].build.tlas.width &&
             !parsed[i + 1].output.write_rays && !parsed[i + 1].output.write_hits)
             traced = r;
         // Free the per-pixel data of finished points: sweeps keep only totals.

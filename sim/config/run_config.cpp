@@ -39,6 +39,32 @@ BreakEvenAxis read_axis(const JsonReader& r) {
     return a;
 }
 
+// The BVH node width the run's presets build (execution.bvh_width: RDNA4's
+// driver builds 8-wide nodes, RDNA2/3's 4-wide). One traced frame serves
+// every preset, so presets that name a width must agree, and a config that
+// sets bvh.width must set theirs; a run whose presets name none keeps the
+// config's width (4 by default: NVIDIA's node width is not public).
+void preset_bvh_width(RunConfig& c, bool width_given) {
+    const CostModel* named = nullptr;
+    std::size_t at = 0;
+    for (std::size_t p = 0; p < c.costs.size(); ++p) {
+        const CostModel& cost = *c.costs[p];
+        if (cost.execution.bvh_width == 0) continue;
+        const std::string where = c.file + ": /cost/" + std::to_string(p) + ": " + cost.name + " builds " +
+                                  std::to_string(cost.execution.bvh_width) + "-wide nodes (its execution.bvh_width)";
+        if (named && named->execution.bvh_width != cost.execution.bvh_width)
+            throw InputError(where + ", /cost/" + std::to_string(at) + " (" + named->name + ") " +
+                             std::to_string(named->execution.bvh_width) +
+                             "-wide ones: one run traces one BVH, so run them in separate configs");
+        if (width_given && c.build.tlas.width != cost.execution.bvh_width)
+            throw InputError(where + ", but the config sets bvh.width " + std::to_string(c.build.tlas.width) +
+                             ": drop bvh.width, or run the preset in another config");
+        if (!named) named = &cost, at = p;
+    }
+    if (!named) return;
+    c.build.tlas.width = c.build.custom_blas.width = c.build.triangle_blas.width = named->execution.bvh_width;
+}
+
 template <class Model>
 std::shared_ptr<const Model> load_once(std::map<std::string, std::shared_ptr<const Model>>& cache,
                                        const std::string& path, Model (*load)(const std::string&)) {
@@ -299,6 +325,7 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
     }
     PresetCache local;
     load_presets(c, presets ? *presets : local);
+    preset_bvh_width(c, r.has("bvh") && r.child("bvh").has("width"));
     return c;
 }
 

@@ -271,6 +271,8 @@ std::string cost_model_to_json(const CostModel& m) {
             for (Event x : m.execution.lockstep_events) names.push_back(std::string(event_name(x)));
             e["lockstep_events"] = {{"value", names}, {"source", source("lockstep_events")}};
         }
+        if (m.execution.bvh_width > 0)
+            e["bvh_width"] = {{"value", m.execution.bvh_width}, {"source", source("bvh_width")}};
         if (m.execution.sm.enabled) {
             // The SM block as loaded, so a written preset (a fit's output)
             // prices on the same SM as the preset it started from.

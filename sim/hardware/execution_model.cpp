@@ -9,7 +9,8 @@ namespace rtc {
 const char* execution_name(ExecutionKind k) { return k == ExecutionKind::Warp ? "warp" : "per_ray"; }
 
 ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& base) {
-    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events", "sm"});
+    r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events", "bvh_width",
+                   "sm"});
     ExecutionModel m = base;
     const auto entry = [&](std::string_view key) {
         const JsonReader e = r.child(key);
@@ -61,6 +62,12 @@ ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& 
                 e.fail(key, std::string(event_name(*ev)) + " is listed twice");
             m.lockstep_events.push_back(*ev);
         }
+    }
+    if (r.has("bvh_width")) {
+        const JsonReader e = entry("bvh_width");
+        m.bvh_width = static_cast<int>(e.integer("value", std::nullopt, 2, 8));
+        if (m.bvh_width != 2 && m.bvh_width != 4 && m.bvh_width != 8)
+            e.fail("value", "expected 2, 4 or 8, got " + std::to_string(m.bvh_width));
     }
     if (r.has("sm")) {
         m.sm = parse_sm_model(r.child("sm"), base.sm);

@@ -43,6 +43,10 @@ struct ExecutionModel {
     // RT-unit events this machine runs as shader code in lockstep (empty on
     // NVIDIA, whose RT core traverses on its own).
     std::vector<Event> lockstep_events;
+    // The BVH node width this machine's driver builds (AMD GPURT / RADV:
+    // 4-wide on RDNA2/3, 8-wide on RDNA4); 0: not public, the run's
+    // bvh.width decides. A run takes its presets' width (sim/config).
+    int bvh_width = 0;
     // The SM around the warps (sm_model.h): resident warps hide latency.
     // Disabled: each wave priced alone and summed.
     SmModel sm;
@@ -59,7 +63,7 @@ struct ExecutionModel {
 // {"model": {"value": "warp", "source": ...}, "warp_width": {...},
 //  "tile": {"value": [8, 4], ...}, "rt_parallel_lanes": {...},
 //  "lockstep_events": {"value": ["tlas_node_visit", ...], ...},
-//  "sm": {...} (parse_sm_model)}.
+//  "bvh_width": {"value": 2, 4 or 8, ...}, "sm": {...} (parse_sm_model)}.
 // Keys absent from the block keep `base`'s values (a derived preset's
 // execution block overrides its base's key by key).
 [[nodiscard]] ExecutionModel parse_execution_model(const JsonReader& block, const ExecutionModel& base = {});

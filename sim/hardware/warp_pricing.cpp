@@ -330,16 +330,19 @@ FrameTerms WarpTotals::terms(const Roofline& roof) const {
 }
 
 void roofline_counts(const WarpTotals& totals, const Roofline& roof, EffectiveCounts& waves,
-                     const EffectiveCounts& rt_lanes) {
+                     const EffectiveCounts& rt_lanes, const std::vector<Event>& lockstep) {
+    const auto code = [&](std::size_t e) {
+        return sm_code(e) || std::find(lockstep.begin(), lockstep.end(), static_cast<Event>(e)) != lockstep.end();
+    };
     switch (totals.terms(roof).bound) {
         case FrameTerms::Bound::Sum: return;
         case FrameTerms::Bound::Latency:
             for (std::size_t e = 0; e < kEventCount; ++e)
-                waves[e] *= (sm_code(e) ? roof.latency_per_issue : 1.0) / roof.warps;
+                waves[e] *= (code(e) ? roof.latency_per_issue : 1.0) / roof.warps;
             return;
         case FrameTerms::Bound::Issue:
             for (std::size_t e = 0; e < kEventCount; ++e)
-                if (!sm_code(e)) waves[e] = 0.0;
+                if (!code(e)) waves[e] = 0.0;
             return;
         case FrameTerms::Bound::RtUnit:
             for (std::size_t e = 0; e < kEventCount; ++e) waves[e] = rt_lanes[e] / roof.rt_unit_lanes;

@@ -1,9 +1,11 @@
 // Hardware presets after Turing (issue "Predictions for the hardware after
-// Turing"): each is turing-calibrated plus sourced deltas, so every hardware
-// preset runs the warp model and inherits the fit's covariance; the same
-// arithmetic has the same price in every method (sum_of); AMD's traversal
-// loop runs in lockstep as shader code (lockstep events), and its batched
-// draw pricing equals pricing each draw wave by wave.
+// Turing"): each is a fitted Turing preset plus sourced deltas (NVIDIA's
+// turing-calibrated, AMD's turing-sm with RDNA's own issue prices and SM),
+// so every hardware preset runs the warp model and inherits a fit's
+// covariance; the same arithmetic has the same price in every method
+// (sum_of); AMD's traversal loop runs in lockstep as shader code (lockstep
+// events), and its batched draw pricing equals pricing each draw wave by
+// wave; a preset's BVH width (rdna4: 8) is the run's.
 #include "core/input_error.h"
 #include "sim/hardware/cost_model.h"
 #include "sim/hardware/presets/derived_preset.h"
@@ -93,22 +95,78 @@ TEST_CASE("derived presets: deltas scale, replace or compose, the rest is the ba
     }
     CHECK(ray_moves);
 
-    // A replaced cost leaves the fit: rdna3's loop is priced by its operations,
-    // which no draw moves, while its box tests keep the fit's interval.
+    // A replaced cost leaves the fit: rdna3's loop is priced by its operations
+    // at RDNA's own issue prices, which no draw moves, while its box tests
+    // keep the fit's interval (rdna3 derives from turing-sm, the SM model).
     const CostModel rdna3 = shipped("rdna3");
-    const auto r = draw_cost_models(rdna3, 8, 5);
+    CHECK(rdna3.derived_from == "turing-sm");
+    const auto r = draw_cost_models(rdna3, 8, 5), sm = draw_cost_models(shipped("turing-sm"), 8, 5);
     for (std::size_t d = 0; d < r.size(); ++d) {
         CHECK(r[d][Event::BlasNodeVisit] == rdna3[Event::BlasNodeVisit]);
-        CHECK(r[d][Event::BlasBoxTest] == t[d][Event::BlasBoxTest]);
+        CHECK(r[d][Event::OpFma] == rdna3[Event::OpFma]);
+        CHECK(r[d][Event::BlasBoxTest] == sm[d][Event::BlasBoxTest]);
+        CHECK(r[d][Event::Ray] == sm[d][Event::Ray]);
         CHECK(r[d][Event::TriangleTest] == 4.0 * r[d][Event::BlasBoxTest]);  // sum_of follows the draw
     }
-    CHECK(rdna3[Event::BlasNodeVisit] == doctest::Approx(12 * turing[Event::OpFma] + 3 * turing[Event::OpBranch]));
+    CHECK(rdna3[Event::BlasNodeVisit] == doctest::Approx(12 * rdna3[Event::OpFma] + 3 * rdna3[Event::OpBranch]));
+    CHECK(rdna3[Event::BlasNodeVisit] == doctest::Approx(9.0));  // 12 x 0.5 + 3 x 1.0 CU issue cycles
 
     // The flattened form reads back to the same costs (report.json, shards).
     const CostModel again = parse_cost_model(cost_model_to_json(rdna3), "again.json");
     CHECK(again.cycles == rdna3.cycles);
     CHECK(again.execution.lockstep_events == rdna3.execution.lockstep_events);
     CHECK(again.uncertainty->parameters.size() == rdna3.uncertainty->parameters.size());
+    CHECK(again.execution.bvh_width == 4);
+    CHECK(again.execution.sm.allocation_unit == rdna3.execution.sm.allocation_unit);
+}
+
+TEST_CASE("AMD presets: priced by RDNA's own issue rates, not by the NVIDIA fits' operation-class scale") {
+    // Copies of every preset, with turing-calibrated's fitted 1/20 scale on
+    // the operation classes (and turing-sm's issue prices) changed: the AMD
+    // presets' costs must not move.
+    const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "amd_own_prices";
+    fs::create_directories(dir);
+    for (const auto& entry : fs::directory_iterator(kHw))
+        if (entry.path().extension() == ".json")
+            fs::copy_file(entry.path(), dir / entry.path().filename(), fs::copy_options::overwrite_existing);
+    for (const char* base : {"turing-calibrated.json", "turing-sm.json"}) {
+        nlohmann::json j = nlohmann::json::parse(read_text_file(kHw + base));
+        for (const char* op : {"op_fma", "op_div", "op_sqrt", "op_branch", "op_load"})
+            j["cycles"][op]["value"] = 7.0 * j["cycles"][op]["value"].get<double>();
+        for (auto& p : j["uncertainty"]["parameters"])
+            if (p["events"].size() == 5 && p["events"][0] == "op_fma") p["value"] = 7.0 * p["value"].get<double>();
+        write_text_file((dir / base).string(), j.dump(2));
+    }
+    REQUIRE(load_cost_model((dir / "turing-calibrated.json").string())[Event::OpFma] ==
+            doctest::Approx(7.0 * shipped("turing-calibrated")[Event::OpFma]));
+    for (const char* name : {"rdna3", "rdna4"}) {
+        CAPTURE(name);
+        const CostModel moved = load_cost_model((dir / (std::string(name) + ".json")).string()), amd = shipped(name);
+        for (std::size_t e = 0; e < kEventCount; ++e) {
+            CAPTURE(kEventNames[e]);
+            CHECK(moved.cycles[e] == amd.cycles[e]);
+        }
+        // RDNA's issue prices per compute unit (2 SIMD32s, a wave32 VALU
+        // instruction per SIMD per cycle), with their sources tagged.
+        CHECK(amd[Event::OpFma] == 0.5);
+        CHECK(amd[Event::OpDiv] == 6.5);
+        for (const Event op : {Event::OpFma, Event::OpDiv, Event::OpSqrt, Event::OpBranch, Event::OpLoad}) {
+            const std::string& source = amd.source[static_cast<std::size_t>(op)];
+            CHECK(has_source_tag(source));
+            CHECK(source.find("fitted by rtcsim calibrate") == std::string::npos);
+        }
+        // Resident waves from the VGPR footprint on RDNA3's CU: 2 SIMDs of
+        // 1536 VGPRs per lane, 24-VGPR blocks, at most 16 waves per SIMD.
+        const SmModel& cu = amd.execution.sm;
+        REQUIRE(cu.enabled);
+        CHECK(resident_warps(cu, 112, 32) == 24);  // ray generation + shading + the loop
+        CHECK(resident_warps(cu, 127, 32) == 20);  // ... + the capsule program
+        CHECK(resident_warps(cu, 173, 32) == 16);  // ... + the bracketed phantom program
+        CHECK(resident_warps(cu, 64, 32) == 32);   // at most 16 per SIMD
+        CHECK(amd.execution.sm.latency_per_issue == 5.0);
+    }
+    CHECK(shipped("rdna3").execution.bvh_width == 4);
+    CHECK(shipped("rdna4").execution.bvh_width == 8);
 }
 
 TEST_CASE("derived presets: every error names the file and JSON path") {
@@ -201,23 +259,27 @@ TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest l
 TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wave pricing (rdna3, rdna4)") {
     const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
     fs::create_directories(dir);
-    const nlohmann::json config = {
-        {"name", "lockstep"},
-        {"scene", {{"type", "bundle"}, {"count", 60}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
-        {"primitives", {{"kind", "capsule"}}},
-        {"methods", {"ref", "obb"}},
-        {"cost", {kHw + "rdna3.json", kHw + "rdna4.json"}},
-        {"memory", kHw + "memory-optix7.json"},
-        {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
-        {"output", {{"images", false}, {"arrays", false}}},
-        {"uncertainty", {{"draws", 8}, {"seed", 3}}}};
-    const RunConfig c = parse_run_config(config, (dir / "c.json").string());
-    RunContext ctx;
-    ctx.quiet = true;
-    ctx.threads = 1;
-    ctx.record_warps = true;
-    const RunResult r = run_simulation(c, ctx);
-    for (std::size_t p = 0; p < 2; ++p) {
+    // One run each: rdna3 builds 4-wide nodes, rdna4 8-wide (execution.bvh_width).
+    for (const char* preset : {"rdna3.json", "rdna4.json"}) {
+        CAPTURE(preset);
+        const nlohmann::json config = {
+            {"name", "lockstep"},
+            {"scene", {{"type", "bundle"}, {"count", 60}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
+            {"primitives", {{"kind", "capsule"}}},
+            {"methods", {"ref", "obb"}},
+            {"cost", nlohmann::json::array({kHw + preset})},
+            {"memory", kHw + "memory-optix7.json"},
+            {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
+            {"output", {{"images", false}, {"arrays", false}}},
+            {"uncertainty", {{"draws", 8}, {"seed", 3}}}};
+        const RunConfig c = parse_run_config(config, (dir / "c.json").string());
+        CHECK(c.build.tlas.width == c.costs[0]->execution.bvh_width);
+        RunContext ctx;
+        ctx.quiet = true;
+        ctx.threads = 1;
+        ctx.record_warps = true;
+        const RunResult r = run_simulation(c, ctx);
+        const std::size_t p = 0;
         const std::vector<CostModel> draws = draw_cost_models(r.costs[p], 8, 3);
         for (const MethodRun& m : r.methods) {
             CAPTURE(m.method);
@@ -225,6 +287,7 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
             // Break-even maps price a method linearly around the preset: exact at it.
             REQUIRE(m.frame.warp_trace.waves() > 0);  // recorded (record_warps)
             CHECK(r.costs[p].execution.warp());
+            CHECK(m.roof[p].enabled);  // the AMD presets run on the SM model
             const auto linear = break_even_counts(m, &r.costs[p], m.roof[p]);
             double at_preset = 0.0;
             for (std::size_t i = 0; i < kEventCount; ++i) at_preset += linear[i] * r.costs[p].cycles[i];
@@ -232,6 +295,46 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
             for (std::size_t d = 0; d < draws.size(); ++d)
                 CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles(m.roof[p])).epsilon(1e-12));
         }
+    }
+}
+
+TEST_CASE("BVH width: a run takes its presets' node width, rdna4's 8, and presets of other widths do not share a run") {
+    const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
+    fs::create_directories(dir);
+    const auto config = [&](nlohmann::json cost) {
+        return nlohmann::json{{"name", "width"},
+                              {"scene", {{"type", "bundle"}, {"count", 10}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
+                              {"methods", {"ref", "obb"}},
+                              {"cost", std::move(cost)},
+                              {"memory", kHw + "memory-optix7.json"},
+                              {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 8}, {"height", 8}, {"spp", 1}, {"bounces", 0}}},
+                              {"output", {{"images", false}, {"arrays", false}}}};
+    };
+    const std::string file = (dir / "w.json").string();
+    const RunConfig amd4 = parse_run_config(config({kHw + "rdna4.json"}), file);
+    CHECK(amd4.build.tlas.width == 8);
+    CHECK(amd4.build.custom_blas.width == 8);
+    CHECK(amd4.build.triangle_blas.width == 8);
+    // NVIDIA presets name no width: the config's (4 by default) stands.
+    const RunConfig mixed = parse_run_config(config({kHw + "turing-calibrated.json", kHw + "rdna3.json"}), file);
+    CHECK(mixed.build.tlas.width == 4);
+    CHECK(parse_run_config(config({kHw + "turing-calibrated.json"}), file).build.custom_blas.width == 4);
+    CHECK_THROWS_WITH_AS((void)parse_run_config(config({kHw + "rdna3.json", kHw + "rdna4.json"}), file),
+                         doctest::Contains("rdna4 builds 8-wide nodes (its execution.bvh_width), /cost/0 (rdna3) 4-wide ones"),
+                         InputError);
+    nlohmann::json four = config({kHw + "rdna4.json"});
+    four["bvh"] = {{"width", 4}};
+    CHECK_THROWS_WITH_AS((void)parse_run_config(four, file), doctest::Contains("but the config sets bvh.width 4"), InputError);
+    four["bvh"] = {{"width", 8}};
+    CHECK(parse_run_config(four, file).build.tlas.width == 8);
+    // And the built structures are 8-wide.
+    RunContext ctx;
+    ctx.quiet = true;
+    ctx.threads = 1;
+    const RunResult r = run_simulation(amd4, ctx);
+    for (const MethodRun& m : r.methods) {
+        CAPTURE(m.method);
+        CHECK(m.structures.width == 8);
     }
 }
 
