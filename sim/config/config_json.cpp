@@ -65,7 +65,8 @@ ojson run_config_to_json(const RunConfig& c, const nlohmann::json& given) {
     j["baseline"] = c.baseline;
     j["bvh"] = {{"width", c.build.custom_blas.width},
                 {"bins", c.build.custom_blas.bins},
-                {"triangle_leaf_size", c.build.triangle_blas.max_leaf_size}};
+                {"triangle_leaf_size", c.build.triangle_blas.max_leaf_size},
+                {"oriented_triangles", c.build.oriented_triangles}};
     j["traversal"] = {{"schedule", c.trace.schedule == IsSchedule::Deferred ? "deferred" : "immediate"},
                       {"phantom_early_out", c.trace.phantom.early_out},
                       {"phantom_program", std::string(phantom_program_name(c.trace.phantom.program))}};

@@ -235,12 +235,13 @@ RunConfig parse_run_config(const nlohmann::json& config, const std::string& file
     c.build.triangle_blas.max_leaf_size = 4;
     if (r.has("bvh")) {
         const JsonReader b = r.child("bvh");
-        b.allow_only({"width", "bins", "triangle_leaf_size"});
+        b.allow_only({"width", "bins", "triangle_leaf_size", "oriented_triangles"});
         c.build.custom_blas = read_build(b, c.build.custom_blas);
         c.build.tlas = read_build(b, c.build.tlas);
         c.build.triangle_blas = read_build(b, c.build.triangle_blas);
         c.build.triangle_blas.max_leaf_size =
             static_cast<int>(b.integer("triangle_leaf_size", 4, 1, 16));
+        c.build.oriented_triangles = b.boolean("oriented_triangles", false);
     }
     if (r.has("cluster")) {  // read by the cluster method only
         const JsonReader k = r.child("cluster");

@@ -3,6 +3,7 @@
 // own std::invalid_argument checks never fire on config input.
 #include "sim/config/scene_config.h"
 
+#include "scenes/generators/ribbons.h"
 #include "sim/util/paths.h"
 
 #include <algorithm>
@@ -61,8 +62,9 @@ void parse_hair(const JsonReader& j, SceneDesc& s) {
     j.allow_only({"type", "name", "emitter", "sphere_radius", "sphere_center", "mesh", "lock_center",
                   "lock_radius", "lock_axis", "style", "strands", "points_per_strand", "length", "radius",
                   "tip_radius", "lean", "wave_amplitude", "waves", "curl_radius", "curl_turns", "seed",
-                  "with_mesh", "curve_basis"});
+                  "with_mesh", "curve_basis", "ribbons"});
     HairDesc& d = s.hair;
+    s.ribbons = j.boolean("ribbons", false);
     const std::string emitter = j.choice("emitter", "sphere", {"sphere", "mesh", "lock"});
     d.emitter = emitter == "sphere" ? HairEmitter::Sphere : emitter == "mesh" ? HairEmitter::Mesh : HairEmitter::Lock;
     // Each emitter's own keys only with that emitter.
@@ -244,6 +246,10 @@ Scene load_scene(const SceneDesc& d) {
                 const ObjContents obj = load_obj(d.hair_mesh->path);
                 if (obj.mesh.triangles.empty()) fail_at(d, d.hair_mesh->key, "no faces in " + d.hair_mesh->shown);
                 s = make_hair_on_mesh(d.hair, obj.mesh);
+            }
+            if (d.ribbons) {  // the strands become triangles; the scene keeps no curves
+                append_ribbons(s.strands, d.hair.seed, s.mesh);
+                s.strands = Strands{};
             }
             break;
         case SceneType::File: s = file_scene(d); break;

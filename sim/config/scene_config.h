@@ -57,6 +57,7 @@ struct SceneDesc {
     BundleDesc bundle;                 // type bundle
     HairDesc hair;                     // type hair
     std::optional<DataPath> hair_mesh; // type hair, emitter "mesh": the OBJ the hair grows on
+    bool ribbons = false;              // type hair: the strands as ribbons of triangles (scenes/generators/ribbons.h)
     std::vector<CurveFileDesc> curves; // type file
     bool curve_list = false;           // "curves" is a list (the scene is named by its key)
     std::optional<MeshFileDesc> mesh;  // type file

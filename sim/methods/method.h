@@ -46,6 +46,10 @@ struct MethodOptions {
     BuildOptions tlas;            // leaf size 1: one box per instance
     ObbVariant obb = ObbVariant::Paper;
     ClusterOptions cluster;       // only the cluster method reads it
+    // The oriented-node methods (obb-nodes, obb-quantized) orient the
+    // triangle BLAS too, as GPURT does on RDNA4 (config bvh.oriented_triangles;
+    // off: the mesh BLAS is ref's, as before).
+    bool oriented_triangles = false;
 };
 
 struct MethodInfo {

@@ -13,6 +13,10 @@
 // extra bytes (the index lives in the 128-B node). Needs the feature
 // "quantized_obb_nodes". Closest hits are identical to ref's.
 // Note: RDNA4 nodes are 8 wide; the method follows the config's BVH width.
+// With bvh.oriented_triangles the same pass runs on ref's triangle BLAS (what
+// GPURT does on RDNA4: it orients triangle geometry only; Kern et al. 2025,
+// "DOBB-BVH", measure it), a triangle's candidate rotation taken from its
+// longest edge (Geometry's triangle_proxies).
 #include "core/parallel.h"
 #include "sim/methods/common/method_adapter.h"
 #include "sim/methods/common/two_level_method.h"
@@ -27,7 +31,11 @@ ObbTreeStructures build_obb_quantized(const Geometry& g, const MethodOptions& o)
         parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
     }, g.prims);
     const QuantizeOptions q;  // 104 rotations, accept below 1.12, 12-bit children
-    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q), g, o);
+    std::optional<ObbBvh> mesh;
+    if (o.oriented_triangles)
+        if (std::optional<Bvh> tree = mesh_blas(g, o)) mesh = quantize_obb_bvh(std::move(*tree), triangle_proxies(g), q);
+    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q),
+                                    std::move(mesh), g, o);
 }
 
 }  // namespace

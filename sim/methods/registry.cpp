@@ -16,6 +16,7 @@ namespace rtc {
     X(dots)                       \
     X(obb_nodes)                  \
     X(obb_quantized)              \
+    X(aabb_quantized)             \
     X(cluster)
 
 #define RTCSIM_DECLARE(name) MethodEntry name##_method();

@@ -174,4 +174,22 @@ TEST_CASE("scene config: errors name the config file and the JSON path") {
     CHECK(wrong_format.find("fur_synthetic.hair: byte 0: bad magic") != std::string::npos);
 }
 
+TEST_CASE("scene config: hair as ribbons is a triangle scene, two triangles per link and one at a pointed tip") {
+    const json hair = {{"type", "hair"}, {"strands", 10}, {"points_per_strand", 4}, {"radius", 0.01}, {"seed", 3}};
+    const Scene curves = load(hair);
+    json as_ribbons = hair;
+    as_ribbons["ribbons"] = true;
+    const Scene ribbons = load(as_ribbons);
+    CHECK(ribbons.strands.strand_count() == 0);
+    CHECK(ribbons.mesh.triangles.size() == 10 * 3 * 2);
+    CHECK(ribbons.mesh.vertices.size() == 10 * 4 * 2);
+    // Each vertex lies a radius from its point of the same strands.
+    for (std::size_t i = 0; i < curves.strands.points.size(); ++i)
+        CHECK(glm::distance(ribbons.mesh.vertices[2 * i], curves.strands.points[i]) == doctest::Approx(0.01).epsilon(1e-4));
+    as_ribbons["tip_radius"] = 0.0;
+    CHECK(load(as_ribbons).mesh.triangles.size() == 10 * (2 * 2 + 1));
+    as_ribbons["with_mesh"] = true;
+    CHECK(load(as_ribbons).mesh.triangles.size() > 10 * (2 * 2 + 1));
+}
+
 }  // namespace RTCSIM_TEST_FILE

@@ -22,7 +22,7 @@ namespace {
 // Every method that must return ref's hits bit for bit. dots is left out on
 // purpose: its triangles approximate the curves (MethodInfo::approximate);
 // test_methods_dots.cpp measures its agreement instead.
-constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss", "obb-nodes", "obb-quantized"};
+constexpr const char* kBeyond[] = {"leaf-obb", "split", "lss", "obb-nodes", "obb-quantized", "aabb-quantized"};
 
 bool same_hit(const TraceHit& a, const TraceHit& b) {
     return a.geom == b.geom && a.prim == b.prim &&

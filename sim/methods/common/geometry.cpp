@@ -41,6 +41,24 @@ std::vector<BoundProxy> bound_proxies(const Geometry& g) {
     return out;
 }
 
+std::vector<BoundProxy> triangle_proxies(const Geometry& g) {
+    std::vector<BoundProxy> out;
+    out.reserve(g.triangles.size());
+    for (const Triangle& t : g.triangles) {
+        const Vec3 v[3] = {t.v0, t.v1, t.v2};
+        // The longest edge runs from v[k] to v[(k + 1) % 3]; the third vertex sits between.
+        int k = 0;
+        float longest = -1.0f;
+        for (int e = 0; e < 3; ++e) {
+            const Vec3 d = v[(e + 1) % 3] - v[e];
+            if (const float l = glm::dot(d, d); l > longest) longest = l, k = e;
+        }
+        const Vec3& third = v[(k + 2) % 3];
+        out.push_back({{v[k], third, third, v[(k + 1) % 3]}, 0.0f});
+    }
+    return out;
+}
+
 float primitive_radius(const Geometry& g, std::uint32_t index) {
     return std::visit([&](const auto& v) { return proxy(v[index]).radius; }, g.prims);
 }

@@ -33,6 +33,14 @@ struct Geometry {
 // points with the largest radius (convex hull property).
 [[nodiscard]] std::vector<BoundProxy> bound_proxies(const Geometry& geometry);
 
+// The same for the mesh's triangles: the three vertices (radius 0), ordered
+// so that the proxy's axis is the triangle's longest edge, the direction a
+// thin triangle (a grass blade's, a hair card's) runs along. GPURT frames a
+// triangle by its first edge and normal (FetchTriKdopObbMatrixIndex); the
+// builders here take one axis, and the longest edge is the one a sliver
+// needs.
+[[nodiscard]] std::vector<BoundProxy> triangle_proxies(const Geometry& geometry);
+
 // The largest radius of primitive `index` (a strand's thickness at its
 // thickest: what hit distances are compared against).
 [[nodiscard]] float primitive_radius(const Geometry& geometry, std::uint32_t index);

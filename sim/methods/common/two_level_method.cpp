@@ -26,14 +26,24 @@ std::optional<Instance> add_mesh_blas(const Geometry& g, const MethodOptions& o,
     return make_instance(static_cast<std::uint32_t>(blases.size() - 1), 0, Affine{});
 }
 
-ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g, const MethodOptions& o) {
+ObbTreeStructures make_obb_tree_structures(ObbBvh tree, std::optional<ObbBvh> mesh, const Geometry& g,
+                                           const MethodOptions& o) {
     std::vector<Bvh> blases;
     blases.push_back(std::move(tree.bvh));
     std::vector<BlasKind> kinds{BlasKind::Custom};
     std::vector<Instance> instances{make_instance(0, 0, Affine{})};
-    add_mesh_blas(g, o, blases, kinds, instances);
+    ObbFrames mesh_frames;
+    const bool mesh_oriented = mesh.has_value() && !g.triangles.empty();
+    if (mesh_oriented) {
+        blases.push_back(std::move(mesh->bvh));
+        kinds.push_back(BlasKind::Triangles);
+        instances.push_back(make_instance(1, 0, Affine{}));
+        mesh_frames = std::move(mesh->frames);
+    } else {
+        add_mesh_blas(g, o, blases, kinds, instances);
+    }
     return {{build_two_level(std::move(blases), instances, o.tlas), std::move(kinds)},
-            std::move(tree.frames)};
+            std::move(tree.frames), std::move(mesh_frames), mesh_oriented};
 }
 
 StructureCounts count_two_level(const TwoLevelStructures& s) {

@@ -93,16 +93,20 @@ struct WorldRayLeaf {
 // Two-level methods whose custom-primitive BLAS (BLAS 0) has oriented child
 // boxes (core/obb_bvh.h): obb-nodes (one transform per oriented child, priced
 // as extra bytes per child) and obb-quantized (one table rotation per node,
-// no extra bytes). The TLAS and the mesh BLAS are ref's.
+// no extra bytes). The TLAS is ref's; the mesh BLAS (BLAS 1) is ref's, or,
+// with MethodOptions::oriented_triangles, oriented the method's own way.
 struct ObbTreeStructures {
     TwoLevelStructures two_level;
-    ObbFrames frames;  // of BLAS 0's entries
+    ObbFrames frames;       // of BLAS 0's entries
+    ObbFrames mesh_frames;  // of the mesh BLAS's entries, when mesh_oriented
+    bool mesh_oriented = false;
 };
 
 // Wraps an oriented-box tree over the geometry's primitives (ids = primitive
-// indices) as BLAS 0 under an identity instance, plus the mesh BLAS.
-[[nodiscard]] ObbTreeStructures make_obb_tree_structures(ObbBvh tree, const Geometry& g,
-                                                         const MethodOptions& o);
+// indices) as BLAS 0 under an identity instance, plus the mesh BLAS: `mesh`
+// (an oriented tree over the triangles) if given, else ref's.
+[[nodiscard]] ObbTreeStructures make_obb_tree_structures(ObbBvh tree, std::optional<ObbBvh> mesh,
+                                                         const Geometry& g, const MethodOptions& o);
 
 struct ObbTreeMethod {
     using Structures = ObbTreeStructures;
@@ -110,10 +114,12 @@ struct ObbTreeMethod {
     static StructureCounts count(const Structures& s) {
         StructureCounts c = count_two_level(s.two_level);
         if (s.frames.style == ObbStyle::PerChild) c.oriented_children = s.frames.rotated_entries();
+        if (s.mesh_oriented && s.mesh_frames.style == ObbStyle::PerChild)
+            c.oriented_children += s.mesh_frames.rotated_entries();
         return c;
     }
     static std::size_t bytes(const Structures& s) {
-        return s.two_level.accel.memory_bytes() + s.frames.memory_bytes();
+        return s.two_level.accel.memory_bytes() + s.frames.memory_bytes() + s.mesh_frames.memory_bytes();
     }
 
     template <TraversalMode Mode, class Programs>
@@ -125,6 +131,8 @@ struct ObbTreeMethod {
             accel, ray, sink, two_level_leaf<WorldRayLeaf>(s.two_level, programs),
             [&](std::uint32_t blas, const Ray& object_ray, float tmax, auto&& on_leaf) {
                 if (blas == 0) return traverse_obb<Mode>(accel.blases[0], s.frames, object_ray, tmax, sink, on_leaf);
+                if (s.mesh_oriented)  // the only other BLAS is the mesh's
+                    return traverse_obb<Mode>(accel.blases[blas], s.mesh_frames, object_ray, tmax, sink, on_leaf);
                 return traverse<Mode, kBlasEvents>(accel.blases[blas], object_ray.origin,
                                                    safe_inverse(object_ray.direction), object_ray.tmin,
                                                    tmax, sink, on_leaf);

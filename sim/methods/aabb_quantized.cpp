@@ -1,0 +1,46 @@
+// aabb-quantized: obb-quantized without its rotations. ref's BLASes with
+// every node's child boxes rounded outwards to 12 bits of the node's extent
+// (RDNA4's quantised children; core/obb_bvh_quantize.cpp), no node rotated:
+// the axis-aligned baseline an oriented-box tree is compared with on AMD
+// hardware, whose AABB nodes are quantised the same way (Kern et al. 2025,
+// "DOBB-BVH", measure their oriented trees against such a BVH8). Against it,
+// obb-quantized's speedup is the rotations' alone; against ref, it also
+// carries the cost of the quantisation, which ref (float boxes) does not pay.
+// The custom-primitive BLAS is always quantised; the triangle BLAS when
+// obb-quantized would orient it (bvh.oriented_triangles). Closest hits are
+// identical to ref's; no extra bytes; ordinary box tests only.
+#include "core/parallel.h"
+#include "sim/methods/common/method_adapter.h"
+#include "sim/methods/common/two_level_method.h"
+
+namespace rtc {
+
+namespace {
+
+ObbTreeStructures build_aabb_quantized(const Geometry& g, const MethodOptions& o) {
+    std::vector<Aabb> boxes(g.primitive_count());
+    std::visit([&](const auto& prims) {
+        parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
+    }, g.prims);
+    QuantizeOptions q;
+    q.accept = 0.0;  // no rotation is ever accepted: 12-bit axis-aligned children
+    std::optional<ObbBvh> mesh;
+    if (o.oriented_triangles)
+        if (std::optional<Bvh> tree = mesh_blas(g, o)) mesh = quantize_obb_bvh(std::move(*tree), triangle_proxies(g), q);
+    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q),
+                                    std::move(mesh), g, o);
+}
+
+}  // namespace
+
+MethodEntry aabb_quantized_method() {
+    return {{"aabb-quantized",
+             "ref's BLAS with RDNA4's 12-bit child boxes and no rotation: obb-quantized's axis-aligned baseline",
+             {"custom_primitives"}},
+            [](const Geometry& g, const MethodOptions&) -> std::uint64_t { return 1 + (g.triangles.empty() ? 0 : 1); },
+            [](const Geometry& g, const MethodOptions& o) -> std::unique_ptr<BuiltMethod> {
+                return std::make_unique<BuiltMethodOf<ObbTreeMethod>>(build_aabb_quantized(g, o));
+            }};
+}
+
+}  // namespace rtc
