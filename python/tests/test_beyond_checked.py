@@ -78,3 +78,34 @@ def test_embree_rows_and_block(tmp_path):
 def test_an_unknown_check_is_refused():
     with pytest.raises(SystemExit, match="lss-dots, embree"):
         checked().block(["triangles=x"])
+
+
+def triangle_report(directory, index, scene, bounces, cycles, speedup, interval):
+    """A report.json of configs/runs/obb_triangles.json's sweep: each method's total cycles per preset."""
+    folder = os.path.join(directory, "%d_scene=%s_workload.bounces=%d" % (index, scene, bounces))
+    os.makedirs(folder)
+    presets = ["rdna4", "hypothetical-obb"]
+    r = {"name": "t", "config": {"scene": {"name": scene}, "workload": {"bounces": bounces}},
+         "provenance": {"git_commit": "abc1234", "git_dirty": False}, "cost_presets": presets,
+         "speedup_over_ref": {"obb-quantized": {p: speedup for p in presets}},
+         "speedup_interval_over_ref": {"obb-quantized": {p: interval for p in presets}},
+         "methods": {m: {"cycles": {p: {"total": c} for p in presets}} for m, c in cycles.items()}}
+    with open(os.path.join(folder, "report.json"), "w") as f:
+        json.dump(r, f)
+
+
+def test_obb_triangles_rows_primary_and_derived_secondary(tmp_path):
+    b = checked()
+    # Paths share their primary rays: the bounces' own speedup is (300 - 100) / (200 - 100) = 2.
+    triangle_report(tmp_path, 0, "grass", 0, {"ref": 100.0, "obb-quantized": 100.0}, 1.0, [0.9, 1.1])
+    triangle_report(tmp_path, 1, "grass", 2, {"ref": 300.0, "obb-quantized": 200.0}, 1.5, [1.4, 1.6])
+    rows, stamp, extra = b.obb_triangles_rows(str(tmp_path))
+    assert extra == {} and "abc1234" in stamp and "obb_triangles.json" in stamp
+    primary = [r for r in rows if "primary" in r["figure"]]
+    secondary = [r for r in rows if "secondary" in r["figure"]]
+    assert len(primary) == 2 and len(secondary) == 2  # per preset, one scene
+    assert all(r["model"] == 1.0 and r["band"] == (0.9, 1.1) and r["measured"][3] == 1.185 for r in primary)
+    assert all(r["model"] == pytest.approx(2.0) and r["band"] is None and r["measured"][3] == 1.324 for r in secondary)
+    # The table marks them: 1.0 / 1.185 misses; 2.0 against 1.324 misses too (no band to meet it).
+    text = b.table(rows)
+    assert text.count("| miss |") == 4
