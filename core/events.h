@@ -75,7 +75,11 @@ static_assert(!kEventNames.back().empty(), "every Event needs a name in kEventNa
 // HandOff: the RT unit handing a candidate to the SM (once per IS round).
 // Program: work inside an intersection program, per call; a round costs the
 //          most expensive active lane's program.
-enum class EventUnit : std::uint8_t { Shader, RtUnit, HandOff, Program };
+// Lockstep: RT-unit work that a machine runs as shader code in the wave's own
+//          traversal loop (AMD RDNA), so the wave pays its slowest lane's. No
+//          event has it in kEventUnits: a preset moves RT-unit events there
+//          (ExecutionModel::unit, sim/hardware/execution_model.h).
+enum class EventUnit : std::uint8_t { Shader, RtUnit, HandOff, Program, Lockstep };
 
 inline constexpr EventUnit kEventUnits[] = {
     EventUnit::Shader,   // ray

@@ -38,6 +38,7 @@ const char* unit_name(EventUnit u) {
         case EventUnit::RtUnit: return "rt_unit";
         case EventUnit::HandOff: return "hand_off";
         case EventUnit::Program: return "program";
+        case EventUnit::Lockstep: return "lockstep";
     }
     return "?";
 }

@@ -266,9 +266,9 @@ std::string cost_model_to_json(const CostModel& m) {
         e["warp_width"] = {{"value", m.execution.warp_width}, {"source", source("warp_width")}};
         e["tile"] = {{"value", {m.execution.tile_width, m.execution.tile_height}}, {"source", source("tile")}};
         e["rt_parallel_lanes"] = {{"value", m.execution.rt_parallel_lanes}, {"source", source("rt_parallel_lanes")}};
-        if (!m.execution.lockstep_events.empty()) {
+        if (!m.execution.lockstep_events().empty()) {
             nlohmann::ordered_json names = nlohmann::ordered_json::array();
-            for (Event x : m.execution.lockstep_events) names.push_back(std::string(event_name(x)));
+            for (Event x : m.execution.lockstep_events()) names.push_back(std::string(event_name(x)));
             e["lockstep_events"] = {{"value", names}, {"source", source("lockstep_events")}};
         }
         if (m.execution.bvh_width > 0)

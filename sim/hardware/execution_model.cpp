@@ -8,6 +8,12 @@ namespace rtc {
 
 const char* execution_name(ExecutionKind k) { return k == ExecutionKind::Warp ? "warp" : "per_ray"; }
 
+void ExecutionModel::set_lockstep_events(std::vector<Event> events) {
+    for (std::size_t e = 0; e < kEventCount; ++e) units_[e] = kEventUnits[e];
+    for (const Event e : events) units_[static_cast<std::size_t>(e)] = EventUnit::Lockstep;
+    lockstep_ = std::move(events);
+}
+
 ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& base) {
     r.allow_only({"model", "warp_width", "tile", "rt_parallel_lanes", "lockstep_events", "bvh_width",
                    "sm"});
@@ -51,17 +57,18 @@ ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& 
         const JsonReader e = entry("lockstep_events");
         const nlohmann::json& v = e.json()["value"];
         if (!v.is_array()) e.fail("value", "expected a list of RT-unit event names, got " + describe(v));
-        m.lockstep_events.clear();
+        std::vector<Event> loop;
         for (std::size_t i = 0; i < v.size(); ++i) {
             const auto ev = v[i].is_string() ? event_from_name(v[i].get<std::string>()) : std::nullopt;
             const std::string key = "value/" + std::to_string(i);
             if (!ev) e.fail(key, "unknown event " + describe(v[i]) + " (see core/events.h)");
             if (event_unit(*ev) != EventUnit::RtUnit)
                 e.fail(key, std::string(event_name(*ev)) + " is not RT-unit work: only those can move into the shader's loop");
-            if (std::find(m.lockstep_events.begin(), m.lockstep_events.end(), *ev) != m.lockstep_events.end())
+            if (std::find(loop.begin(), loop.end(), *ev) != loop.end())
                 e.fail(key, std::string(event_name(*ev)) + " is listed twice");
-            m.lockstep_events.push_back(*ev);
+            loop.push_back(*ev);
         }
+        m.set_lockstep_events(std::move(loop));
     }
     if (r.has("bvh_width")) {
         const JsonReader e = entry("bvh_width");
@@ -73,7 +80,7 @@ ExecutionModel parse_execution_model(const JsonReader& r, const ExecutionModel& 
         m.sm = parse_sm_model(r.child("sm"), base.sm);
         if (!m.warp()) r.fail("sm", "the SM model needs the warp model (\"model\": \"warp\")");
     }
-    if (!m.lockstep_events.empty() && !m.warp())
+    if (!m.lockstep_events().empty() && !m.warp())
         r.fail("lockstep_events", "lockstep events need the warp model (\"model\": \"warp\")");
     return m;
 }

@@ -24,6 +24,7 @@
 #include "core/events.h"
 #include "sim/hardware/sm_model.h"
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -41,8 +42,14 @@ struct ExecutionModel {
     int tile_width = 8, tile_height = 4;  // the pixel tile a camera warp covers
     double rt_parallel_lanes = 32; // lanes whose RT-unit work overlaps (1..W)
     // RT-unit events this machine runs as shader code in lockstep (empty on
-    // NVIDIA, whose RT core traverses on its own).
-    std::vector<Event> lockstep_events;
+    // NVIDIA, whose RT core traverses on its own), in the preset's order.
+    [[nodiscard]] const std::vector<Event>& lockstep_events() const { return lockstep_; }
+    // Sets them, and places them in unit(): the one place they are applied.
+    void set_lockstep_events(std::vector<Event> events);
+    // Each event's unit on this machine, computed when the preset is loaded:
+    // its kEventUnits entry, except that the lockstep events are
+    // EventUnit::Lockstep. Pricers ask this, not kEventUnits and the list.
+    [[nodiscard]] EventUnit unit(Event e) const { return units_[static_cast<std::size_t>(e)]; }
     // The BVH node width this machine's driver builds (AMD GPURT / RADV:
     // 4-wide on RDNA2/3, 8-wide on RDNA4); 0: not public, the run's
     // bvh.width decides. A run takes its presets' width (sim/config).
@@ -57,6 +64,14 @@ struct ExecutionModel {
     [[nodiscard]] bool same_grouping(const ExecutionModel& o) const {
         return warp_width == o.warp_width && tile_width == o.tile_width && tile_height == o.tile_height;
     }
+
+private:
+    std::vector<Event> lockstep_;
+    std::array<EventUnit, kEventCount> units_ = [] {
+        std::array<EventUnit, kEventCount> u{};
+        for (std::size_t e = 0; e < kEventCount; ++e) u[e] = kEventUnits[e];
+        return u;
+    }();
 };
 
 // Reads the optional "execution" block of a cost preset:

@@ -148,7 +148,7 @@ void add_program_counts(EffectiveCounts& eff, const ProgramCounts& call) {
 
 void add_rt_lane_counts(EffectiveCounts& counts, const WaveWork& wave, const CostModel& m) {
     for (const LaneWork& l : wave.lanes) add_counts(counts, l.counts, kRtEvents, 1.0);
-    for (const Event e : m.execution.lockstep_events)
+    for (const Event e : m.execution.lockstep_events())
         for (const LaneWork& l : wave.lanes) counts[static_cast<std::size_t>(e)] -= static_cast<double>(l.counts[e]);
 }
 
@@ -171,7 +171,7 @@ WavePrice price_wave_impl(const WaveWork& wave, const CostModel& m, ProgramPrice
     std::uint32_t max_calls = 0;
     // RT-unit events the machine runs as shader code (AMD's traversal loop):
     // in lockstep, so the wave pays its slowest lane's loop, outside the unit.
-    const std::vector<Event>& loop = m.execution.lockstep_events;
+    const std::vector<Event>& loop = m.execution.lockstep_events();
     thread_local std::vector<double> lane_shader, lane_rt;
     std::size_t i = 0;
     if constexpr (kLanesAtOnce) {
@@ -330,9 +330,9 @@ FrameTerms WarpTotals::terms(const Roofline& roof) const {
 }
 
 void roofline_counts(const WarpTotals& totals, const Roofline& roof, EffectiveCounts& waves,
-                     const EffectiveCounts& rt_lanes, const std::vector<Event>& lockstep) {
+                     const EffectiveCounts& rt_lanes, const ExecutionModel& machine) {
     const auto code = [&](std::size_t e) {
-        return sm_code(e) || std::find(lockstep.begin(), lockstep.end(), static_cast<Event>(e)) != lockstep.end();
+        return sm_code(e) || machine.unit(static_cast<Event>(e)) == EventUnit::Lockstep;
     };
     switch (totals.terms(roof).bound) {
         case FrameTerms::Bound::Sum: return;

@@ -122,10 +122,10 @@ struct WarpTotals {
 // own (price_wave's, summed), `rt_lanes` every lane's RT-unit event counts
 // (without the machine's lockstep events), summed. Turns `waves` into the
 // counts whose linear price is the binding term of totals.terms(roof).
-// `lockstep`: the RT-unit events the machine runs as SM code (the preset's
-// execution.lockstep_events, AMD's traversal loop), which the waves priced
-// as shader work: issue cycles, like the shader's own.
+// `machine`: whose lockstep events (ExecutionModel::unit, AMD's traversal
+// loop) the waves priced as shader work: SM code, issue cycles like the
+// shader's own.
 void roofline_counts(const WarpTotals& totals, const Roofline& roof, EffectiveCounts& waves,
-                     const EffectiveCounts& rt_lanes, const std::vector<Event>& lockstep = {});
+                     const EffectiveCounts& rt_lanes, const ExecutionModel& machine);
 
 }  // namespace rtc

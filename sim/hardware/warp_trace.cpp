@@ -48,7 +48,7 @@ WarpTotals WarpTrace::price(const CostModel& m) const { return price_waves(m, nu
 WarpTotals WarpTrace::price(const CostModel& m, const Roofline& roof, EffectiveCounts& eff) const {
     EffectiveCounts rt_lanes{};
     const WarpTotals totals = price_waves(m, &eff, roof.enabled ? &rt_lanes : nullptr);
-    roofline_counts(totals, roof, eff, rt_lanes, m.execution.lockstep_events);
+    roofline_counts(totals, roof, eff, rt_lanes, m.execution);
     return totals;
 }
 

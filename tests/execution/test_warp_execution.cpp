@@ -200,7 +200,7 @@ CostModel random_model(std::mt19937& rng, double rt_parallel, bool lockstep) {
     m.cycles[static_cast<std::size_t>(Event::TlasNodeVisit)] = 0.0;  // a free event
     m.execution.kind = ExecutionKind::Warp;
     m.execution.rt_parallel_lanes = rt_parallel;
-    if (lockstep) m.execution.lockstep_events = {Event::BlasNodeVisit, Event::TlasBoxTest};
+    if (lockstep) m.execution.set_lockstep_events({Event::BlasNodeVisit, Event::TlasBoxTest});
     return m;
 }
 

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 
 namespace RTCSIM_TEST_FILE {  // one per file: tests/CMakeLists.txt compiles them in batches
@@ -114,7 +115,7 @@ TEST_CASE("derived presets: deltas scale, replace or compose, the rest is the ba
     // The flattened form reads back to the same costs (report.json, shards).
     const CostModel again = parse_cost_model(cost_model_to_json(rdna3), "again.json");
     CHECK(again.cycles == rdna3.cycles);
-    CHECK(again.execution.lockstep_events == rdna3.execution.lockstep_events);
+    CHECK(again.execution.lockstep_events() == rdna3.execution.lockstep_events());
     CHECK(again.uncertainty->parameters.size() == rdna3.uncertainty->parameters.size());
     CHECK(again.execution.bvh_width == 4);
     CHECK(again.execution.sm.allocation_unit == rdna3.execution.sm.allocation_unit);
@@ -225,7 +226,31 @@ TEST_CASE("shipped presets: hardware presets run the warp model, carry sources a
     }
     CHECK(hardware == 6);  // ampere, ada, blackwell, hypothetical-obb, rdna3, rdna4
     CHECK(shipped("rdna4").hypothetical_reason("obb-quantized").find("[C] AMD GPURT") == 0);
-    CHECK(shipped("rdna4").execution.lockstep_events.size() == 2);  // instance transforms in hardware
+    CHECK(shipped("rdna4").execution.lockstep_events().size() == 2);  // instance transforms in hardware
+}
+
+TEST_CASE("lockstep events: each preset's event units are computed once when it is loaded") {
+    // Where each event runs on the machine: kEventUnits, except the preset's
+    // lockstep events, which every pricer reads from ExecutionModel::unit.
+    for (const char* name : {"turing-calibrated", "rdna3", "rdna4"}) {
+        CAPTURE(name);
+        const ExecutionModel& x = shipped(name).execution;
+        for (std::size_t i = 0; i < kEventCount; ++i) {
+            const auto e = static_cast<Event>(i);
+            CAPTURE(kEventNames[i]);
+            const bool loop = std::find(x.lockstep_events().begin(), x.lockstep_events().end(), e) !=
+                              x.lockstep_events().end();
+            CHECK(x.unit(e) == (loop ? EventUnit::Lockstep : kEventUnits[i]));
+        }
+    }
+    CHECK(shipped("turing-calibrated").execution.lockstep_events().empty());
+    CHECK(shipped("rdna3").execution.unit(Event::InstanceTransform) == EventUnit::Lockstep);
+    CHECK(shipped("rdna4").execution.unit(Event::InstanceTransform) == EventUnit::RtUnit);  // in the intersect instruction
+    // Setting them again moves the units with them.
+    ExecutionModel m = shipped("rdna3").execution;
+    m.set_lockstep_events({Event::TlasBoxTest});
+    CHECK(m.unit(Event::TlasBoxTest) == EventUnit::Lockstep);
+    CHECK(m.unit(Event::InstanceTransform) == EventUnit::RtUnit);
 }
 
 TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest lane, outside the RT unit") {
@@ -244,7 +269,7 @@ TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest l
     const WavePrice nvidia = price_wave(w, m, prices);
     CHECK(nvidia.shader == 1.0);
     CHECK(nvidia.rt == 3.0 * 14 + 2.0 * 28);
-    m.execution.lockstep_events = {Event::BlasNodeVisit};
+    m.execution.set_lockstep_events({Event::BlasNodeVisit});
     EffectiveCounts eff{};
     ProgramPrices prices2;
     const WavePrice amd = price_wave(w, m, prices2, &eff);

@@ -167,7 +167,9 @@ TEST_CASE("provenance: a run priced under ada alone records ada's effective cost
     // Effective: every cost ada prices with, as a number, deltas applied.
     const json& effective = p["effective"]["cycles"];
     REQUIRE(!effective.empty());
-    for (const auto& [event, entry] : effective.items()) {
+    for (const auto& item : effective.items()) {  // no structured binding: INFO's lambda captures it (clang 14)
+        const std::string event = item.key();
+        const json& entry = item.value();
         INFO(event);
         const Event e = *event_from_name(event);
         CHECK(entry["value"].get<double>() == r.costs[0].cycles[static_cast<std::size_t>(e)]);

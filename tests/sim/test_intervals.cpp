@@ -140,7 +140,7 @@ TEST_CASE("draw pricing: rows compared on AVX lanes give the lane-by-lane refere
         for (double& c : base.cycles) c = cost(rng);
         base.execution.kind = ExecutionKind::Warp;
         base.execution.rt_parallel_lanes = trial % 3 == 0 ? 4.0 : 1.0;
-        if (trial % 4 == 0) base.execution.lockstep_events = {Event::BlasNodeVisit, Event::TlasBoxTest};
+        if (trial % 4 == 0) base.execution.set_lockstep_events({Event::BlasNodeVisit, Event::TlasBoxTest});
         // Draws that change 1 to 12 events (past 7 in the RT unit: the
         // reference's path in both), programs in some trials.
         const std::size_t changed = 1 + rng() % 12;

@@ -32,13 +32,11 @@ WaveDrawPricer::WaveDrawPricer(const DrawSet& set, bool lane_by_lane)
     : set_(&set), n_(set.draws.size()), lane_by_lane_(lane_by_lane) {
     // As price_wave: a machine's lockstep events (its shader traversal loop)
     // leave the RT unit and are priced at the wave's slowest lane.
-    const std::vector<Event>& loop = set.base->execution.lockstep_events;
-    const auto in_loop = [&](Event e) { return std::find(loop.begin(), loop.end(), e) != loop.end(); };
-    split_unit([](Event e) { return event_unit(e) == EventUnit::Shader; }, set, shader_.fixed, shader_.changed,
-               shader_.cost);
-    split_unit([&](Event e) { return event_unit(e) == EventUnit::RtUnit && !in_loop(e); }, set, rt_.fixed,
-               rt_.changed, rt_.cost);
-    split_unit(in_loop, set, loop_.fixed, loop_.changed, loop_.cost);
+    const ExecutionModel& machine = set.base->execution;
+    const auto in = [&](EventUnit u) { return [&machine, u](Event e) { return machine.unit(e) == u; }; };
+    split_unit(in(EventUnit::Shader), set, shader_.fixed, shader_.changed, shader_.cost);
+    split_unit(in(EventUnit::RtUnit), set, rt_.fixed, rt_.changed, rt_.cost);
+    split_unit(in(EventUnit::Lockstep), set, loop_.fixed, loop_.changed, loop_.cost);
     // undominated_rows_8's gather: changed event k into lane k + 1; lane 0
     // (the fixed sum) and lanes past the changed events gather nothing.
     for (Unit* u : {&shader_, &rt_, &loop_})
