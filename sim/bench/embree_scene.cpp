@@ -137,17 +137,7 @@ void EmbreeCapsules::trace(std::span<const Ray> rays, std::span<EmbreeHit> hits,
         for (std::size_t i = block * kBlock; i < end; ++i) {
             const Ray& r = rays[i];
             ctx.world_ray = &r;
-            RTCRayHit rh;
-            rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
-            rh.ray.tnear = r.tmin;
-            rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
-            rh.ray.time = 0.0f;
-            rh.ray.tfar = r.tmax;
-            rh.ray.mask = 0xFFFFFFFFu;
-            rh.ray.id = 0;
-            rh.ray.flags = 0;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            RTCRayHit rh = embree_ray_hit(r);
             rtcIntersect1(scene_, &ctx.context, &rh);
             hits[i] = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? EmbreeHit{} : EmbreeHit{rh.ray.tfar, rh.hit.primID};
         }

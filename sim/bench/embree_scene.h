@@ -27,6 +27,23 @@
 namespace rtc {
 
 // One ray's closest hit as Embree found it (prim: the capsule's index).
+// `r` as Embree's ray and hit record for rtcIntersect1: no hit yet, every
+// mask bit, time 0 (both Embree baselines trace rtcsim's rays this way).
+[[nodiscard]] inline RTCRayHit embree_ray_hit(const Ray& r) {
+    RTCRayHit rh;
+    rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+    rh.ray.tnear = r.tmin;
+    rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = r.tmax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
 struct EmbreeHit {
     float t = kInfinity;
     std::uint32_t prim = 0xFFFFFFFFu;

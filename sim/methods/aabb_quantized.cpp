@@ -9,7 +9,6 @@
 // The custom-primitive BLAS is always quantised; the triangle BLAS when
 // obb-quantized would orient it (bvh.oriented_triangles). Closest hits are
 // identical to ref's; no extra bytes; ordinary box tests only.
-#include "core/parallel.h"
 #include "sim/methods/common/method_adapter.h"
 #include "sim/methods/common/two_level_method.h"
 
@@ -18,17 +17,9 @@ namespace rtc {
 namespace {
 
 ObbTreeStructures build_aabb_quantized(const Geometry& g, const MethodOptions& o) {
-    std::vector<Aabb> boxes(g.primitive_count());
-    std::visit([&](const auto& prims) {
-        parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
-    }, g.prims);
     QuantizeOptions q;
     q.accept = 0.0;  // no rotation is ever accepted: 12-bit axis-aligned children
-    std::optional<ObbBvh> mesh;
-    if (o.oriented_triangles)
-        if (std::optional<Bvh> tree = mesh_blas(g, o)) mesh = quantize_obb_bvh(std::move(*tree), triangle_proxies(g), q);
-    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q),
-                                    std::move(mesh), g, o);
+    return build_quantized_tree(g, o, q);
 }
 
 }  // namespace

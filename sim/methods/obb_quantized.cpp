@@ -17,7 +17,6 @@
 // GPURT does on RDNA4: it orients triangle geometry only; Kern et al. 2025,
 // "DOBB-BVH", measure it), a triangle's candidate rotation taken from its
 // longest edge (Geometry's triangle_proxies).
-#include "core/parallel.h"
 #include "sim/methods/common/method_adapter.h"
 #include "sim/methods/common/two_level_method.h"
 
@@ -26,16 +25,7 @@ namespace rtc {
 namespace {
 
 ObbTreeStructures build_obb_quantized(const Geometry& g, const MethodOptions& o) {
-    std::vector<Aabb> boxes(g.primitive_count());
-    std::visit([&](const auto& prims) {
-        parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
-    }, g.prims);
-    const QuantizeOptions q;  // 104 rotations, accept below 1.12, 12-bit children
-    std::optional<ObbBvh> mesh;
-    if (o.oriented_triangles)
-        if (std::optional<Bvh> tree = mesh_blas(g, o)) mesh = quantize_obb_bvh(std::move(*tree), triangle_proxies(g), q);
-    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q),
-                                    std::move(mesh), g, o);
+    return build_quantized_tree(g, o, QuantizeOptions{});  // 104 rotations, accept below 1.12, 12-bit children
 }
 
 }  // namespace

@@ -104,13 +104,12 @@ TEST_CASE("architecture: files over ~400 lines and folders over ~15 files are re
     CHECK(sources > 100);  // the walk found the tree (a wrong root would report nothing)
 }
 
-TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed plan of sim/config)") {
-    // A run is handed a RunConfig: scene description, absolute paths, loaded
-    // presets (docs/architecture.md, "The path of a config"). Parsing,
-    // resolving and loading belong to sim/config and its planner (plan.h).
-    const std::string forbidden[] = {"sim/util/json_reader.h", "sim/util/json_file.h", "sim/util/paths.h"};
+// Calls check(line) on every line of every source file under sim/<folder>,
+// with the file and line number captured; returns the number of files.
+template <class Check>
+int for_each_source_line(const std::string& folder, Check check) {
     int files = 0;
-    for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / "run")) {
+    for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / folder)) {
         if (!f.is_regular_file() || !is_source(f.path())) continue;
         ++files;
         std::ifstream in(f.path());
@@ -120,12 +119,23 @@ TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed
             ++n;
             CAPTURE(f.path().filename().string());
             CAPTURE(n);
-            CHECK_MESSAGE(line.find("nlohmann") == std::string::npos, "sim/run must not name nlohmann (JSON)");
-            if (line.rfind("#include", 0) != 0) continue;
-            for (const std::string& what : forbidden)
-                CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/run must not include " + what));
+            check(line);
         }
     }
+    return files;
+}
+
+TEST_CASE("architecture: sim/run reads no JSON and no config (it takes the typed plan of sim/config)") {
+    // A run is handed a RunConfig: scene description, absolute paths, loaded
+    // presets (docs/architecture.md, "The path of a config"). Parsing,
+    // resolving and loading belong to sim/config and its planner (plan.h).
+    const std::string forbidden[] = {"sim/util/json_reader.h", "sim/util/json_file.h", "sim/util/paths.h"};
+    const int files = for_each_source_line("run", [&](const std::string& line) {
+        CHECK_MESSAGE(line.find("nlohmann") == std::string::npos, "sim/run must not name nlohmann (JSON)");
+        if (line.rfind("#include", 0) != 0) return;
+        for (const std::string& what : forbidden)
+            CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/run must not include " + what));
+    });
     CHECK(files > 0);
 }
 
@@ -136,23 +146,12 @@ TEST_CASE("architecture: sim/app reads no config JSON after planning (the plan o
     // no JSON reader, and none of the block parsers.
     const std::string forbidden[] = {"JsonReader", "parse_run_config(", "parse_calibrate(", "load_cost_model(",
                                      "load_memory_model("};
-    int files = 0;
-    for (const auto& f : fs::recursive_directory_iterator(kRoot / "sim" / "app")) {
-        if (!f.is_regular_file() || !is_source(f.path())) continue;
-        ++files;
-        std::ifstream in(f.path());
-        std::string line;
-        int n = 0;
-        while (std::getline(in, line)) {
-            ++n;
-            CAPTURE(f.path().filename().string());
-            CAPTURE(n);
-            CHECK_MESSAGE(line.find("sim/util/json_reader.h") == std::string::npos,
-                          "sim/app must not include sim/util/json_reader.h");
-            for (const std::string& what : forbidden)
-                CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/app must not call " + what));
-        }
-    }
+    const int files = for_each_source_line("app", [&](const std::string& line) {
+        CHECK_MESSAGE(line.find("sim/util/json_reader.h") == std::string::npos,
+                      "sim/app must not include sim/util/json_reader.h");
+        for (const std::string& what : forbidden)
+            CHECK_MESSAGE(line.find(what) == std::string::npos, std::string("sim/app must not call " + what));
+    });
     CHECK(files > 0);
 }
 

@@ -1,5 +1,11 @@
 #include "sim/methods/common/two_level_method.h"
 
+#include "core/bvh.h"
+#include "core/parallel.h"
+#include "sim/methods/common/geometry.h"
+
+#include <variant>
+
 namespace rtc {
 
 UninitializedVector<Instance> instance_slots(std::size_t n) {
@@ -60,6 +66,18 @@ StructureCounts count_two_level(const TwoLevelStructures& s) {
         (triangles ? c.triangles : k == BlasKind::Lss ? c.lss_prims : c.custom_prims) += blas.primitive_count();
     }
     return c;
+}
+
+ObbTreeStructures build_quantized_tree(const Geometry& g, const MethodOptions& o, const QuantizeOptions& q) {
+    std::vector<Aabb> boxes(g.primitive_count());
+    std::visit([&](const auto& prims) {
+        parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
+    }, g.prims);
+    std::optional<ObbBvh> mesh;
+    if (o.oriented_triangles)
+        if (std::optional<Bvh> tree = mesh_blas(g, o)) mesh = quantize_obb_bvh(std::move(*tree), triangle_proxies(g), q);
+    return make_obb_tree_structures(quantize_obb_bvh(build_bvh(boxes, o.custom_blas), bound_proxies(g), q),
+                                    std::move(mesh), g, o);
 }
 
 }  // namespace rtc

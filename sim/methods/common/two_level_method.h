@@ -108,6 +108,13 @@ struct ObbTreeStructures {
 [[nodiscard]] ObbTreeStructures make_obb_tree_structures(ObbBvh tree, std::optional<ObbBvh> mesh,
                                                          const Geometry& g, const MethodOptions& o);
 
+// GPURT's pass (quantize_obb_bvh under `q`) on ref's BLAS over the
+// primitives and, with bvh.oriented_triangles, on ref's triangle BLAS (a
+// triangle's candidate rotation from its longest edge), wrapped as above:
+// obb-quantized, and with no rotation accepted its baseline aabb-quantized.
+[[nodiscard]] ObbTreeStructures build_quantized_tree(const Geometry& g, const MethodOptions& o,
+                                                     const QuantizeOptions& q);
+
 struct ObbTreeMethod {
     using Structures = ObbTreeStructures;
 
