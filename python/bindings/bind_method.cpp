@@ -21,14 +21,18 @@ static_assert(sizeof(Ray) == 32 && sizeof(TraceHit) == 28, "Ray / TraceHit layou
 // Per-pixel float fields of FrameResult, (H, W) each; empty unless recorded.
 struct PixelField {
     const char* name;
-    std::vector<float> FrameResult::*field;
+    const std::vector<float>& (*field)(const FrameResult&);
     const char* doc;
 };
+const std::vector<float> kNoPixels;
 const PixelField kPixelFields[] = {
-    {"pixel_warp_cycles", &FrameResult::pixel_warp_cycles,
+    {"pixel_warp_cycles",
+     [](const FrameResult& f) -> const std::vector<float>& { return f.warp.empty() ? kNoPixels : f.warp.front().pixel_cycles; },
      "Warp model, first warp preset: each pixel's share of its waves' cycles."},
-    {"pixel_simt_active", &FrameResult::pixel_simt_active, "Warp model: active lane-rounds of each pixel's waves."},
-    {"pixel_simt_slots", &FrameResult::pixel_simt_slots, "Warp model: rounds x warp width of each pixel's waves."},
+    {"pixel_simt_active", [](const FrameResult& f) -> const std::vector<float>& { return f.pixel_simt_active; },
+     "Warp model: active lane-rounds of each pixel's waves."},
+    {"pixel_simt_slots", [](const FrameResult& f) -> const std::vector<float>& { return f.pixel_simt_slots; },
+     "Warp model: rounds x warp width of each pixel's waves."},
 };
 
 py::object handle_of(const MethodHandle& h) { return keep_alive(h.run); }
@@ -155,13 +159,23 @@ void bind_method(py::module_& m) {
         .def_property_readonly("recorded_waves", [](const MethodHandle& h) {
             return h.method().frame.warp_trace.waves();
         }, "Waves kept for re-pricing under warp presets (record_warps=True).")
+        .def("pixel_warp_cycles_of", [](const MethodHandle& h, const std::string& preset) {
+            const FrameResult& fr = h.method().frame;
+            const PresetWarp* w = fr.warp_of(preset);
+            if (!w) throw py::value_error("\"" + preset + "\" is not a warp preset of this run");
+            const std::vector<float>& v = w->pixel_cycles;
+            const py::ssize_t rows = v.empty() ? 0 : fr.height, cols = v.empty() ? 0 : fr.width;
+            return view<float>(v.data(), {rows, cols}, handle_of(h));
+        }, py::arg("preset"),
+             "Warp model: each pixel's share of its waves' cycles under the warp preset named `preset` "
+             "(empty for ray lists, and for presets re-priced from recorded waves).")
         .def("price", &reprice, py::arg("model"),
              "Re-prices the traced counts (or, under a warp preset, the recorded waves) without tracing.");
     for (const PixelField& f : kPixelFields) {
         const auto field = f.field;
         cls.def_property_readonly(f.name, [field](const MethodHandle& h) {
             const FrameResult& fr = h.method().frame;
-            const std::vector<float>& v = fr.*field;
+            const std::vector<float>& v = field(fr);
             const py::ssize_t rows = v.empty() ? 0 : fr.height, cols = v.empty() ? 0 : fr.width;
             return view<float>(v.data(), {rows, cols}, handle_of(h));
         }, f.doc);

@@ -200,7 +200,7 @@ void bind_run(py::module_& m) {
                 FrameResult& f = r.frame;
                 f.pixel_counts = {};
                 f.radiance = {};
-                f.pixel_warp_cycles = {};
+                for (PresetWarp& w : f.warp) w.pixel_cycles = {};
                 f.pixel_simt_active = {};
                 f.pixel_simt_slots = {};
             }

@@ -112,16 +112,13 @@ class Result(Report):
 
     def pixel_cycles(self, method, preset=None):
         """(H, W) cycles per pixel of a method under one of the run's presets:
-        counts x costs (per-ray model), or under the first warp preset each
-        pixel's share of its waves (what the CLI's heat maps show)."""
+        counts x costs (per-ray model), or under a warp preset each pixel's
+        share of its waves (what the CLI's heat maps show)."""
         m = self.method(method)
         p = self.preset_index(preset)
         cost = self.costs[p]
         if cost.is_warp:
-            if p != self._run.warp_preset:
-                raise ValueError(f"per-pixel warp cycles are kept for the first warp preset only "
-                                 f"({self.cost_presets[self._run.warp_preset]})")
-            return m.pixel_warp_cycles
+            return m.pixel_warp_cycles_of(cost.name)
         return _rtcsim.price_pixels(m.pixel_counts, cost)  # as the CLI's heat maps and cycles_*.npy
 
     def pixel_events(self, method, event):

@@ -172,7 +172,7 @@ int run_planned(const RunPlan& plan, const CliOptions& cli, const std::string& o
         for (MethodRun& m : r.methods) {
             m.frame.pixel_counts = {};
             m.frame.ray_counts = {};
-            m.frame.more_pixel_warp_cycles = {};
+            for (std::size_t w = 1; w < m.frame.warp.size(); ++w) m.frame.warp[w].pixel_cycles = {};
             m.frame.radiance = {};
         }
         runs.push_back(std::move(r));

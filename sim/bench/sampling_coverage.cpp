@@ -90,10 +90,10 @@ Options parse(int argc, char** argv) {
 // presets), or null (per-ray presets, priced from the counts).
 std::vector<const std::vector<float>*> warp_pixels(const RunResult& r, const MethodRun& m) {
     std::vector<const std::vector<float>*> out(r.costs.size(), nullptr);
-    for (std::size_t p = 0, w = 0; p < r.costs.size(); ++p) {
+    for (std::size_t p = 0; p < r.costs.size(); ++p) {
         if (!r.costs[p].execution.warp()) continue;
-        out[p] = w == 0 ? &m.frame.pixel_warp_cycles : &m.frame.more_pixel_warp_cycles.at(w - 1);
-        ++w;
+        const PresetWarp* w = m.frame.warp_of(r.costs[p].name);
+        if (w && !w->pixel_cycles.empty()) out[p] = &w->pixel_cycles;
     }
     return out;
 }

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -31,12 +32,31 @@ struct RayWorkload {
     std::vector<Ray> rays;  // when !from_camera
 };
 
+// One warp preset's totals over a task or a frame: its own and, when the
+// run draws from its uncertainty block (run intervals), each draw's.
+struct PresetWarpTotals {
+    WarpTotals totals;
+    std::vector<WarpTotals> draws;  // per draw, in the order of FrameOptions::warp_draws' set
+
+    PresetWarpTotals& operator+=(const PresetWarpTotals& o) {
+        totals += o.totals;
+        for (std::size_t d = 0; d < draws.size() && d < o.draws.size(); ++d) draws[d] += o.draws[d];
+        return *this;
+    }
+};
+
+// A warp preset's results in a frame, found by the preset's name.
+struct PresetWarp : PresetWarpTotals {
+    std::string preset;               // CostModel::name (unique in a run: run_config.cpp)
+    std::vector<float> pixel_cycles;  // camera frames: per pixel, its share of its waves' cycles
+};
+
 // One task's totals, kept in sharded runs (FrameOptions::bands) so that a
 // merge adds the bands' tasks in the single run's order.
 struct FrameTask {
     EventTotals totals;
     std::uint64_t rays_traced = 0;
-    std::vector<WarpTotals> warp;  // per warp preset
+    std::vector<PresetWarpTotals> warp;  // per warp preset, as FrameResult::warp
 };
 
 struct FrameResult {
@@ -51,11 +71,9 @@ struct FrameResult {
     std::uint64_t rays_traced = 0;
     double trace_seconds = 0.0;
     // SIMT execution (when FrameOptions::warp is set):
-    std::vector<WarpTotals> warp;           // per FrameOptions::warp_presets entry, then per draw of warp_draws
-    std::vector<float> pixel_warp_cycles;   // first warp preset: per pixel, its share of its waves
-    std::vector<std::vector<float>> more_pixel_warp_cycles;  // warp presets 1, 2, ...: the same
-    std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves
-    std::vector<float> pixel_simt_slots;    // per pixel: rounds x W of its waves
+    std::vector<PresetWarp> warp;           // per FrameOptions::warp_presets entry, in its order
+    std::vector<float> pixel_simt_active;   // per pixel: active lane-rounds of its waves (first warp preset)
+    std::vector<float> pixel_simt_slots;    // per pixel: rounds x W of its waves (first warp preset)
     WarpTrace warp_trace;                   // every wave, when FrameOptions::record_warps
     // The frame's tasks (image rows, tile rows, blocks of rays) and those this
     // result traced, [task_begin, task_end); the pixels (camera) or rays (ray
@@ -65,6 +83,14 @@ struct FrameResult {
     std::size_t task_count = 0, task_begin = 0, task_end = 0;
     std::size_t item_begin = 0, item_end = 0;
     std::vector<FrameTask> tasks;
+
+    // The warp results of the preset named `preset`, or null (not a warp
+    // preset of this frame).
+    [[nodiscard]] const PresetWarp* warp_of(std::string_view preset) const {
+        for (const PresetWarp& w : warp)
+            if (w.preset == preset) return &w;
+        return nullptr;
+    }
 };
 
 struct FrameOptions {
@@ -79,7 +105,8 @@ struct FrameOptions {
     const ExecutionModel* warp = nullptr;
     std::vector<const CostModel*> warp_presets;
     // Cost models drawn from the warp presets' uncertainty (run intervals):
-    // priced per wave like the presets, but only their totals are kept.
+    // priced per wave like the presets, but only their totals are kept, with
+    // the preset each set's `base` is (FrameResult::warp[p].draws).
     std::vector<DrawSet> warp_draws;
     bool record_warps = false;
     // Sharded runs (sim/shard): trace only band `band` of `bands` contiguous

@@ -1,13 +1,20 @@
 #include "sim/execution/warp_frame.h"
 
+#include <stdexcept>
+
 namespace rtc {
 
 namespace {
 
-std::size_t priced_count(const FrameOptions& fo) {
-    std::size_t n = fo.warp_presets.size();
-    for (const DrawSet& set : fo.warp_draws) n += set.draws.size();
-    return n;
+// Per draw set, the index of the warp preset it was drawn from.
+std::vector<std::size_t> draw_presets(const FrameOptions& fo) {
+    std::vector<std::size_t> out;
+    for (const DrawSet& set : fo.warp_draws) {
+        const auto p = std::find(fo.warp_presets.begin(), fo.warp_presets.end(), set.base);
+        if (p == fo.warp_presets.end()) throw std::logic_error("a warp draw set's base is not a warp preset");
+        out.push_back(static_cast<std::size_t>(p - fo.warp_presets.begin()));
+    }
+    return out;
 }
 
 std::size_t task_count(const RayWorkload& work, const ExecutionModel& x, std::size_t rays_per_task) {
@@ -23,7 +30,7 @@ WarpFrame::WarpFrame(const RayWorkload& work, const FrameOptions& fo)
       fo_(fo),
       start_(std::chrono::steady_clock::now()),
       presets_(fo.warp_presets.size()),
-      priced_(priced_count(fo)),
+      draw_preset_(draw_presets(fo)),
       rays_per_task_(static_cast<std::size_t>(fo.warp->warp_width) * 128),
       tasks_total_(task_count(work, *fo.warp, rays_per_task_)),
       first_(band_range(tasks_total_, fo.band, fo.bands).first),
@@ -32,7 +39,11 @@ WarpFrame::WarpFrame(const RayWorkload& work, const FrameOptions& fo)
       threads_(fo.threads ? fo.threads : hardware_threads()),
       camera_(work.from_camera ? camera_frame(work.camera) : CameraFrame{}),
       progress_(fo.label, last_ - first_, fo.progress) {
-    for (Task& t : tasks_) t.warp.resize(priced_);
+    for (Task& t : tasks_) {
+        t.warp.resize(presets_);
+        for (std::size_t i = 0; i < draw_preset_.size(); ++i)
+            t.warp[draw_preset_[i]].draws.resize(fo.warp_draws[i].draws.size());
+    }
     // Every bounce's wave from the start (a path has at most bounces + 1
     // rays; a ray list's rays are all depth 0), each with room for a tile's
     // lanes or a ray list's warp: no size check and no reallocation per ray.
@@ -56,12 +67,15 @@ WarpFrame::WarpFrame(const RayWorkload& work, const FrameOptions& fo)
             static_cast<std::size_t>(fo.warp->tile_height) * static_cast<std::size_t>(out_.width);
         size_for_band(out_.pixel_counts, n, first_ * pixels_per_task, last_ * pixels_per_task);
         size_for_band(out_.radiance, n, first_ * pixels_per_task, last_ * pixels_per_task);
-        out_.pixel_warp_cycles.assign(n, 0.0f);
         out_.pixel_simt_active.assign(n, 0.0f);
         out_.pixel_simt_slots.assign(n, 0.0f);
-        out_.more_pixel_warp_cycles.assign(presets_ > 1 ? presets_ - 1 : 0, std::vector<float>(n, 0.0f));
     } else {
         size_for_band(out_.ray_counts, work.rays.size(), first_ * rays_per_task_, last_ * rays_per_task_);
+    }
+    out_.warp.resize(presets_);
+    for (std::size_t p = 0; p < presets_; ++p) {
+        out_.warp[p].preset = fo.warp_presets[p]->name;
+        if (work.from_camera) out_.warp[p].pixel_cycles.assign(static_cast<std::size_t>(out_.width) * out_.height, 0.0f);
     }
 }
 
@@ -70,22 +84,21 @@ void WarpFrame::flush_waves(Thread& th, Task& t) {
     const auto warp_width = static_cast<float>(fo_.warp->warp_width);
     for (WaveWork& w : th.waves) {
         if (w.lanes.empty()) continue;
-        for (std::size_t i = 0, slot = presets_; i < th.draws.size(); slot += fo_.warp_draws[i++].draws.size())
-            th.draws[i].add(w, &t.warp[slot]);
+        for (std::size_t i = 0; i < th.draws.size(); ++i) th.draws[i].add(w, t.warp[draw_preset_[i]].draws.data());
         for (std::size_t p = 0; p < presets_; ++p) {
             const WavePrice price = price_wave(w, *fo_.warp_presets[p], th.prices[p]);
-            t.warp[p].add(price, w.lanes.size());
+            t.warp[p].totals.add(price, w.lanes.size());
             if (!camera) continue;
             const float share = static_cast<float>(price.total() / static_cast<double>(w.lanes.size()));
+            std::vector<float>& cycles = out_.warp[p].pixel_cycles;
             if (p != 0) {
-                std::vector<float>& cycles = out_.more_pixel_warp_cycles[p - 1];
                 for (const LaneWork& l : w.lanes) cycles[l.pixel] += share;
                 continue;
             }
             const auto active = static_cast<float>(price.active_lane_rounds);
             const float slots = static_cast<float>(price.rounds) * warp_width;
             for (const LaneWork& l : w.lanes) {
-                out_.pixel_warp_cycles[l.pixel] += share;
+                cycles[l.pixel] += share;
                 out_.pixel_simt_active[l.pixel] += active;
                 out_.pixel_simt_slots[l.pixel] += slots;
             }
@@ -131,11 +144,12 @@ void WarpFrame::finish_row(Thread& th, Task& t, std::uint32_t y0, std::uint32_t 
 
 FrameResult WarpFrame::finish() {
     progress_.finish();
-    out_.warp.resize(priced_);
+    for (std::size_t i = 0; i < draw_preset_.size(); ++i)
+        out_.warp[draw_preset_[i]].draws.resize(fo_.warp_draws[i].draws.size());
     for (Task& t : tasks_) {  // fixed order: task 0, 1, 2, ...
         out_.totals += t.totals;
         out_.rays_traced += t.rays_traced;
-        for (std::size_t p = 0; p < priced_; ++p) out_.warp[p] += t.warp[p];
+        for (std::size_t p = 0; p < presets_; ++p) out_.warp[p] += t.warp[p];
         if (fo_.record_warps) out_.warp_trace.append(t.trace);
         out_.rays.insert(out_.rays.end(), t.rays.begin(), t.rays.end());
         out_.hits.insert(out_.hits.end(), t.hits.begin(), t.hits.end());

@@ -39,7 +39,7 @@ public:
     // ray (rays_traced, the calls' vector, the last call profile).
     struct alignas(64) Task {
         EventTotals totals;
-        std::vector<WarpTotals> warp;  // per preset, then per draw
+        std::vector<PresetWarpTotals> warp;  // per preset
         WarpTrace trace;
         std::vector<Ray> rays;
         std::vector<TraceHit> hits;
@@ -112,7 +112,8 @@ private:
     const RayWorkload& work_;
     const FrameOptions& fo_;
     std::chrono::steady_clock::time_point start_;
-    std::size_t presets_, priced_;  // priced: the presets, then every draw (totals only)
+    std::size_t presets_;
+    std::vector<std::size_t> draw_preset_;  // per FrameOptions::warp_draws set: the preset it draws from
     std::size_t rays_per_task_, tasks_total_, first_, last_;
     FrameResult out_;
     std::vector<Task> tasks_;

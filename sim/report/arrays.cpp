@@ -45,21 +45,17 @@ std::vector<std::string> write_arrays(const RunResult& run, const std::string& d
         entry["totals"] = nlohmann::ordered_json::object();
         for (std::size_t i = 0; i < kEventCount; ++i) entry["totals"][std::string(kEventNames[i])] = f.totals.n[i];
         nlohmann::ordered_json cycles = nlohmann::ordered_json::object();
-        std::size_t warp_index = 0;  // index among the run's warp presets
         for (std::size_t p = 0; p < run.costs.size(); ++p) {
             const CostModel& cost = run.costs[p];
             const bool warp = cost.execution.warp();
-            const std::size_t wi = warp ? warp_index++ : 0;
             if (!m.priced[p].supported) {
                 cycles[cost.name] = {{"n/a", "the preset's hardware has no " + m.priced[p].missing_feature}};
                 continue;
             }
             std::vector<double> values(counts.size());
             if (warp) {
-                const std::vector<float>* shares = !image ? nullptr
-                                                   : wi == 0 ? &f.pixel_warp_cycles
-                                                   : wi - 1 < f.more_pixel_warp_cycles.size() ? &f.more_pixel_warp_cycles[wi - 1]
-                                                                                              : nullptr;
+                const PresetWarp* w = image ? f.warp_of(cost.name) : nullptr;
+                const std::vector<float>* shares = w ? &w->pixel_cycles : nullptr;
                 if (!shares || shares->size() != values.size()) {
                     cycles[cost.name] = {{"n/a", "the warp model prices waves, not single rays of a ray list"}};
                     continue;

@@ -87,7 +87,7 @@ void write_images(const RunResult& run, const std::string& dir, unsigned threads
     std::vector<ScalarField> cycles, calls;
     for (const MethodRun* m : traced) {
         if (warp)
-            cycles.push_back({m->frame.width, m->frame.height, m->frame.pixel_warp_cycles});
+            cycles.push_back({m->frame.width, m->frame.height, m->frame.warp_of(cost.name)->pixel_cycles});
         else
             cycles.push_back(pixel_field(m->frame, [&](const RayCounts& c) {
                 return static_cast<float>(price_cycles(c, cost));

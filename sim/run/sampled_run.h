@@ -27,7 +27,7 @@ struct SampledMethod {
 
 // The estimates of one method's sampled frame. `costs` are the run's cost
 // presets; `warp_pixels[p]` the frame's per-pixel cycles of preset p when it
-// is a warp preset (FrameResult::pixel_warp_cycles, more_pixel_warp_cycles),
+// is a warp preset (its PresetWarp::pixel_cycles),
 // null for per-ray presets (priced from the pixels' counts) or when the
 // frame has none; `totals[p]` the preset's scaled total cycles.
 [[nodiscard]] SampledMethod estimate_sampled(const FrameResult& frame, const TileSample& sample,

@@ -32,44 +32,34 @@ RayWorkload make_frame(const WorkloadDesc& w, const Aabb& bounds) {
 }
 
 // The config's cost and memory presets (loaded and checked when it was
-// parsed) into `r`; returns, per cost preset, its index among the warp
-// presets (SIZE_MAX for per-ray presets). The warp presets group rays alike
-// (parse_run_config checked it): the first one's grouping serves them all.
-std::vector<std::size_t> take_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
+// parsed) into `r`, and its warp presets, in order. The warp presets group
+// rays alike (parse_run_config checked it): the first one's grouping serves
+// them all.
+void take_presets(RunResult& r, const RunConfig& c, std::vector<const CostModel*>& warp_presets) {
     r.costs.clear();
     for (const auto& cost : c.costs) r.costs.push_back(*cost);
     r.memory = *c.memory;
     r.warp_grouping.reset();
-    std::vector<std::size_t> warp_index(r.costs.size(), SIZE_MAX);
-    for (std::size_t p = 0; p < r.costs.size(); ++p) {
-        const CostModel& cost = r.costs[p];
+    for (const CostModel& cost : r.costs) {
         if (!cost.execution.warp()) continue;
         if (!r.warp_grouping) r.warp_grouping = cost.execution;
-        warp_index[p] = warp_presets.size();
         warp_presets.push_back(&cost);
     }
-    return warp_index;
 }
 
 // The cost models drawn from each preset's uncertainty block (run
-// intervals), and where the warp presets' draws sit among a frame's warp
-// totals: after the presets, in preset order (slot SIZE_MAX: none).
+// intervals); a warp preset's are priced per wave as the frame runs
+// (FrameOptions::warp_draws) and kept with its totals (PresetWarp::draws).
 struct Draws {
     std::vector<std::vector<CostModel>> models;  // per preset
-    std::vector<std::size_t> warp_slot;          // per preset: its first draw's index in FrameResult::warp
     std::vector<DrawSet> warp_sets;              // FrameOptions::warp_draws
 };
 
-Draws make_draws(const std::vector<CostModel>& costs, const UncertaintyOptions& u,
-                 const std::vector<std::size_t>& warp_index, std::size_t warp_presets) {
+Draws make_draws(const std::vector<CostModel>& costs, const UncertaintyOptions& u) {
     Draws d;
-    d.warp_slot.assign(costs.size(), SIZE_MAX);
-    for (std::size_t k = 0; k < costs.size(); ++k)
-        d.models.push_back(draw_cost_models(costs[k], static_cast<std::size_t>(u.draws), u.seed));
+    for (const CostModel& cost : costs) d.models.push_back(draw_cost_models(cost, static_cast<std::size_t>(u.draws), u.seed));
     for (std::size_t k = 0; k < costs.size(); ++k) {
-        if (warp_index[k] == SIZE_MAX || d.models[k].empty()) continue;
-        d.warp_slot[k] = warp_presets;
-        for (const DrawSet& s : d.warp_sets) d.warp_slot[k] += s.draws.size();
+        if (!costs[k].execution.warp() || d.models[k].empty()) continue;
         d.warp_sets.push_back({&costs[k], {}});
         for (const CostModel& m : d.models[k]) d.warp_sets.back().draws.push_back(&m);
     }
@@ -77,17 +67,17 @@ Draws make_draws(const std::vector<CostModel>& costs, const UncertaintyOptions& 
 }
 
 // Prices a traced method under every cost preset of `r` and its structures
-// under r's memory preset. `warp_index` as load_presets returns it; the
-// frame's warp totals are in that order.
-void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
-                  const std::vector<std::size_t>& warp_index, const Draws& draws,
-                  const std::vector<std::size_t>& pixel_warp_index) {
+// under r's memory preset. A warp preset's totals, draws and per-pixel
+// cycles are the frame's of the same name (FrameResult::warp_of).
+void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method, const Draws& draws) {
     m.priced.clear();
     m.warp.clear();
     m.roof.clear();
     const std::uint32_t k = r.sample ? r.sample->k() : 1;
+    std::vector<const PresetWarp*> warp(r.costs.size(), nullptr);
     for (std::size_t p = 0; p < r.costs.size(); ++p) {
-        PresetPrice priced = price_preset(m.frame.totals, r.costs[p], warp_index[p] != SIZE_MAX ? &m.frame.warp[warp_index[p]] : nullptr,
+        if (r.costs[p].execution.warp()) warp[p] = m.frame.warp_of(r.costs[p].name);
+        PresetPrice priced = price_preset(m.frame.totals, r.costs[p], warp[p] ? &warp[p]->totals : nullptr,
                                           r.config, method.info.needs, k);
         m.priced.push_back(std::move(priced.run));
         m.warp.push_back(priced.warp);
@@ -97,30 +87,20 @@ void price_method(MethodRun& m, const RunResult& r, const MethodEntry& method,
     m.draw_cycles.assign(r.costs.size(), {});
     for (std::size_t p = 0; p < r.costs.size(); ++p)
         for (std::size_t d = 0; d < draws.models[p].size(); ++d)
-            m.draw_cycles[p].push_back(k * (draws.warp_slot[p] != SIZE_MAX
-                                                ? m.frame.warp[draws.warp_slot[p] + d].cycles(m.roof[p])
-                                                : price(m.frame.totals, draws.models[p][d]).total_cycles));
+            m.draw_cycles[p].push_back(k * (warp[p] ? warp[p]->draws.at(d).cycles(m.roof[p])
+                                                    : price(m.frame.totals, draws.models[p][d]).total_cycles));
     m.memory = price_memory(m.structures, r.memory, r.config.kind, r.primitives, r.mesh_vertices, r.mesh_triangles);
     m.sampled.reset();
     if (!r.sample) return;
-    // A sampled frame: its interval from the traced tiles (each warp
-    // preset's per-pixel cycles, pixel_warp_index[p] of the frame's;
-    // per-ray presets from the counts).
+    // A sampled frame: its interval from the traced tiles (a warp preset's
+    // per-pixel cycles; per-ray presets from the counts).
     std::vector<const std::vector<float>*> warp_pixels(r.costs.size(), nullptr);
     std::vector<double> totals;
     for (std::size_t p = 0; p < r.costs.size(); ++p) {
         totals.push_back(m.priced[p].total_cycles);
-        const std::size_t w = p < pixel_warp_index.size() ? pixel_warp_index[p] : SIZE_MAX;
-        if (w == 0) warp_pixels[p] = &m.frame.pixel_warp_cycles;
-        else if (w != SIZE_MAX && w - 1 < m.frame.more_pixel_warp_cycles.size())
-            warp_pixels[p] = &m.frame.more_pixel_warp_cycles[w - 1];
+        if (warp[p] && !warp[p]->pixel_cycles.empty()) warp_pixels[p] = &warp[p]->pixel_cycles;
     }
     m.sampled = estimate_sampled(m.frame, *r.sample, r.costs, warp_pixels, totals);
-}
-
-std::size_t old_warp_presets(const std::vector<std::size_t>& warp_index) {
-    return static_cast<std::size_t>(std::count_if(warp_index.begin(), warp_index.end(),
-                                                  [](std::size_t i) { return i != SIZE_MAX; }));
 }
 
 }  // namespace
@@ -213,8 +193,8 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
     RunResult r;
     r.config = c;
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
-    const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
+    take_presets(r, c, warp_presets);
+    const Draws draws = make_draws(r.costs, c.uncertainty);
 
     const auto t_load = std::chrono::steady_clock::now();
     const Scene scene = load_scene(c.scene);
@@ -332,7 +312,7 @@ RunResult run_simulation(const RunConfig& c, const RunContext& ctx) {
             m.frame.hits.clear();
             m.frame.hits.shrink_to_fit();
         }
-        price_method(m, r, method, warp_index, draws, warp_index);
+        price_method(m, r, method, draws);
         if (compare_hits && method.info.approximate) {
             if (baseline_sample) compare_with_baseline(m, *built);
             else awaiting_sample.emplace_back(r.methods.size(), std::move(built));
@@ -353,15 +333,16 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
     r.repriced = true;
     r.load_seconds = r.convert_seconds = 0.0;  // nothing loaded or converted: total_seconds is the pricing
     std::vector<const CostModel*> warp_presets;
-    const std::vector<std::size_t> warp_index = take_presets(r, c, warp_presets);
+    take_presets(r, c, warp_presets);
     if (r.warp_grouping && traced.warp_grouping && !r.warp_grouping->same_grouping(*traced.warp_grouping))
         return std::nullopt;
-    const Draws draws = make_draws(r.costs, c.uncertainty, warp_index, warp_presets.size());
-    std::vector<std::size_t> traced_warp_index;
-    for (std::size_t k = 0, tw = 0; k < traced.costs.size(); ++k)
-        traced_warp_index.push_back(traced.costs[k].execution.warp() ? tw++ : SIZE_MAX);
-    const Draws traced_draws = make_draws(traced.costs, traced.config.uncertainty, traced_warp_index,
-                                          old_warp_presets(traced_warp_index));
+    const Draws draws = make_draws(r.costs, c.uncertainty);
+    // The traced run's preset loaded from the same file as preset k, or null.
+    const auto traced_preset = [&](std::size_t k) -> const CostModel* {
+        for (std::size_t j = 0; j < traced.costs.size(); ++j)
+            if (traced.config.cost_presets[j] == c.cost_presets[k]) return &traced.costs[j];
+        return nullptr;
+    };
     for (MethodRun& m : r.methods) {
         const MethodEntry& method = *find_method(m.method);
         const MethodRun& old = *traced.find(m.method);
@@ -383,53 +364,33 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
                        std::to_string(r.memory.instance_limit) + " (" + r.memory.name + ")";
             continue;
         }
-        // Each warp preset's totals: the traced ones when the preset was in
-        // the traced run, else re-priced from the recorded waves.
-        std::vector<WarpTotals> warp(warp_presets.size());
-        for (std::size_t w = 0; w < warp_presets.size(); ++w) {
-            bool found = false;
-            for (std::size_t k = 0, tw = 0; k < traced.costs.size() && !found; ++k) {
-                if (!traced.costs[k].execution.warp()) continue;
-                if (traced.config.cost_presets[k] == c.cost_presets[&*warp_presets[w] - r.costs.data()]) {
-                    warp[w] = old.frame.warp[tw];
-                    found = true;
-                }
-                ++tw;
-            }
-            if (found) continue;
-            if (old.frame.warp_trace.waves() == 0) return std::nullopt;
-            warp[w] = old.frame.warp_trace.price(*warp_presets[w]);
-        }
-        // The warp draws: copied where the traced run priced the same preset's
-        // (the uncertainty options are part of the trace: same_trace), else
-        // re-priced from the recorded waves.
+        // Each warp preset's results: the traced ones (moved out of this
+        // copy of the traced frame) when the traced run had the preset, else
+        // re-priced from the recorded waves; its draws likewise (the
+        // uncertainty options are part of the trace: same_trace). A
+        // re-priced preset has no per-pixel cycles, so no sampling interval.
+        std::vector<PresetWarp> traced_warp = std::move(m.frame.warp);
+        m.frame.warp.clear();
         for (std::size_t k = 0; k < r.costs.size(); ++k) {
-            if (draws.warp_slot[k] == SIZE_MAX) continue;
-            std::size_t old_slot = SIZE_MAX;
-            for (std::size_t j = 0; j < traced.costs.size(); ++j)
-                if (traced.config.cost_presets[j] == c.cost_presets[k] && traced_draws.warp_slot[j] != SIZE_MAX)
-                    old_slot = traced_draws.warp_slot[j];
-            for (std::size_t d = 0; d < draws.models[k].size(); ++d) {
-                if (old_slot != SIZE_MAX) {
-                    warp.push_back(old.frame.warp[old_slot + d]);
-                    continue;
-                }
+            if (!r.costs[k].execution.warp()) continue;
+            PresetWarp w;
+            const CostModel* before = traced_preset(k);
+            for (PresetWarp& t : traced_warp)
+                if (before && t.preset == before->name) w = std::move(t);
+            w.preset = r.costs[k].name;
+            const bool traced_totals = before && before->execution.warp();
+            if (!traced_totals) {
                 if (old.frame.warp_trace.waves() == 0) return std::nullopt;
-                warp.push_back(old.frame.warp_trace.price(draws.models[k][d]));
+                w.totals = old.frame.warp_trace.price(r.costs[k]);
             }
+            if (w.draws.size() != draws.models[k].size()) {
+                if (!draws.models[k].empty() && old.frame.warp_trace.waves() == 0) return std::nullopt;
+                w.draws.clear();
+                for (const CostModel& d : draws.models[k]) w.draws.push_back(old.frame.warp_trace.price(d));
+            }
+            m.frame.warp.push_back(std::move(w));
         }
-        m.frame.warp = std::move(warp);
-        // The traced frame's per-pixel warp cycles are its own presets':
-        // a preset's are found by name, else it has no sampling interval.
-        std::vector<std::size_t> pixel_warp_index(r.costs.size(), SIZE_MAX);
-        for (std::size_t k = 0; k < r.costs.size(); ++k)
-            for (std::size_t j = 0, tw = 0; j < traced.costs.size(); ++j) {
-                if (!traced.costs[j].execution.warp()) continue;
-                if (warp_index[k] != SIZE_MAX && traced.config.cost_presets[j] == c.cost_presets[k])
-                    pixel_warp_index[k] = tw;
-                ++tw;
-            }
-        price_method(m, r, method, warp_index, draws, pixel_warp_index);
+        price_method(m, r, method, draws);
     }
     r.total_seconds = seconds_since(t_start);
     return r;

@@ -18,8 +18,18 @@ namespace rtc {
 namespace {
 
 constexpr char kMagic[8] = {'R', 'T', 'C', 'F', 'R', 'A', 'M', 'E'};
-constexpr std::uint32_t kFormat = 2;  // 2: the identity after the event count
+constexpr std::uint32_t kFormat = 3;  // 2: the identity after the event count; 3: warp results by preset name
 constexpr std::uint32_t kMaxIdentity = 4096;
+constexpr std::uint32_t kMaxPresetName = 4096;
+constexpr std::uint32_t kMaxDraws = 1u << 16;
+
+// Bands of one run price the same presets, by name, with as many draws.
+bool same_presets(const std::vector<PresetWarp>& a, const std::vector<PresetWarp>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t p = 0; p < a.size(); ++p)
+        if (a[p].preset != b[p].preset || a[p].draws.size() != b[p].draws.size()) return false;
+    return true;
+}
 
 class Writer {
 public:
@@ -126,7 +136,14 @@ void write_frame_file(const std::string& path, const FrameResult& f, const std::
     w.put(static_cast<std::uint32_t>(kEventCount));
     w.put(static_cast<std::uint32_t>(identity.size()));
     w.bytes(identity.data(), identity.size());
+    // The warp presets: each one's name and number of draws.
     w.put(static_cast<std::uint32_t>(f.warp.size()));
+    for (const PresetWarp& p : f.warp) {
+        if (p.preset.size() > kMaxPresetName) throw InputError(path + ": internal: preset name too long");
+        w.put(static_cast<std::uint32_t>(p.preset.size()));
+        w.bytes(p.preset.data(), p.preset.size());
+        w.put(static_cast<std::uint32_t>(p.draws.size()));
+    }
     w.put(static_cast<std::int32_t>(f.width));
     w.put(static_cast<std::int32_t>(f.height));
     w.put(static_cast<std::uint64_t>(f.task_count));
@@ -138,18 +155,21 @@ void write_frame_file(const std::string& path, const FrameResult& f, const std::
         if (t.warp.size() != f.warp.size()) throw InputError(path + ": internal: a task's warp presets differ");
         w.put(t.totals);
         w.put(t.rays_traced);
-        for (const WarpTotals& x : t.warp) w.put(x);
+        for (std::size_t p = 0; p < t.warp.size(); ++p) {
+            if (t.warp[p].draws.size() != f.warp[p].draws.size())
+                throw InputError(path + ": internal: a task's draws differ");
+            w.put(t.warp[p].totals);
+            for (const WarpTotals& x : t.warp[p].draws) w.put(x);
+        }
     }
     // The band's slice of each per-item array (empty arrays stay empty).
     const auto slice = [&](const auto& v) { w.array(v, v.empty() ? 0 : f.item_begin, v.empty() ? 0 : f.item_end); };
     slice(f.pixel_counts);
     slice(f.ray_counts);
     slice(f.radiance);
-    slice(f.pixel_warp_cycles);
+    for (const PresetWarp& p : f.warp) slice(p.pixel_cycles);
     slice(f.pixel_simt_active);
     slice(f.pixel_simt_slots);
-    w.put(static_cast<std::uint64_t>(f.more_pixel_warp_cycles.size()));
-    for (const std::vector<float>& v : f.more_pixel_warp_cycles) slice(v);
     w.array(f.rays, 0, f.rays.size());
     w.array(f.hits, 0, f.hits.size());
     w.close();
@@ -173,6 +193,20 @@ FrameResult read_frame_file(const std::string& path, const std::string& identity
     const auto presets = r.get<std::uint32_t>("warp presets");
     if (presets > 1024) r.fail("implausible warp preset count " + std::to_string(presets));
     FrameResult f;
+    f.warp.resize(presets);  // names and draw counts; the totals are the tasks'
+    std::uint64_t priced = 0;  // per task: every preset's totals and draws
+    for (PresetWarp& p : f.warp) {
+        const std::size_t name_at = r.offset();
+        const auto length = r.get<std::uint32_t>("preset name length");
+        if (length == 0 || length > kMaxPresetName) r.fail("implausible preset name length " + std::to_string(length));
+        r.require_records(length, 1, "preset name", name_at);
+        p.preset.resize(length);
+        for (char& c : p.preset) c = r.get<char>("preset name");
+        const auto draws = r.get<std::uint32_t>("preset draws");
+        if (draws > kMaxDraws) r.fail("implausible draw count " + std::to_string(draws));
+        p.draws.resize(draws);
+        priced += 1 + draws;
+    }
     const std::size_t shape_at = r.offset();
     f.width = r.get<std::int32_t>("width");
     f.height = r.get<std::int32_t>("height");
@@ -194,15 +228,18 @@ FrameResult read_frame_file(const std::string& path, const std::string& identity
         r.fail("tasks " + std::to_string(f.task_begin) + " + " + std::to_string(tasks) + " exceed the frame's " +
                std::to_string(f.task_count));
     }
-    r.require_records(tasks, sizeof(EventTotals) + sizeof(std::uint64_t) + presets * sizeof(WarpTotals), "tasks",
+    r.require_records(tasks, sizeof(EventTotals) + sizeof(std::uint64_t) + priced * sizeof(WarpTotals), "tasks",
                       tasks_at);
-    f.warp.resize(presets);  // the preset count; the totals are the tasks'
     f.tasks.resize(static_cast<std::size_t>(tasks));
     for (FrameTask& t : f.tasks) {
         t.totals = r.get<EventTotals>("task totals");
         t.rays_traced = r.get<std::uint64_t>("task rays");
         t.warp.resize(presets);
-        for (WarpTotals& x : t.warp) x = r.get<WarpTotals>("task warp totals");
+        for (std::size_t p = 0; p < presets; ++p) {
+            t.warp[p].totals = r.get<WarpTotals>("task warp totals");
+            t.warp[p].draws.resize(f.warp[p].draws.size());
+            for (WarpTotals& x : t.warp[p].draws) x = r.get<WarpTotals>("task draw totals");
+        }
     }
     f.task_end = f.task_begin + f.tasks.size();
     // Items are pixels (camera frames) or rays (ray lists). Arrays keep only
@@ -223,14 +260,9 @@ FrameResult read_frame_file(const std::string& path, const std::string& identity
     slice(f.pixel_counts, r.array<RayCounts>("pixel counts"), "pixel counts");
     slice(f.ray_counts, r.array<RayCounts>("ray counts"), "ray counts");
     slice(f.radiance, r.array<Vec3>("radiance"), "radiance");
-    slice(f.pixel_warp_cycles, r.array<float>("pixel warp cycles"), "pixel warp cycles");
+    for (PresetWarp& p : f.warp) slice(p.pixel_cycles, r.array<float>("pixel warp cycles"), "pixel warp cycles");
     slice(f.pixel_simt_active, r.array<float>("pixel SIMT lanes"), "pixel SIMT lanes");
     slice(f.pixel_simt_slots, r.array<float>("pixel SIMT slots"), "pixel SIMT slots");
-    const auto more = r.get<std::uint64_t>("warp presets with pixel cycles");
-    if (more > presets) r.fail("pixel cycles of " + std::to_string(more) + " more presets, the frame has " +
-                               std::to_string(presets));
-    f.more_pixel_warp_cycles.resize(static_cast<std::size_t>(more));
-    for (std::vector<float>& v : f.more_pixel_warp_cycles) slice(v, r.array<float>("pixel warp cycles"), "pixel warp cycles");
     f.rays = r.array<Ray>("rays");
     f.hits = r.array<TraceHit>("hits");
     if (!r.at_end()) r.fail("unexpected bytes after the hits");
@@ -241,7 +273,6 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
                               const std::string& what) {
     if (count == 0) throw InputError(what + ": no bands to merge");
     FrameResult out;
-    std::size_t presets = 0;
     std::size_t next_task = 0;
     // Copies a band's items (its array holds items [b, b + part.size())) into
     // the whole frame's array of `items`.
@@ -258,21 +289,24 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
             out.width = b.width;
             out.height = b.height;
             out.task_count = b.task_count;
-            presets = b.warp.size();
-            out.warp.assign(presets, WarpTotals{});
+            for (const PresetWarp& p : b.warp) {  // names and draw counts; totals added below
+                out.warp.emplace_back();
+                out.warp.back().preset = p.preset;
+                out.warp.back().draws.resize(p.draws.size());
+            }
         } else if (b.width != out.width || b.height != out.height || b.task_count != out.task_count ||
-                   b.warp.size() != presets) {
-            throw InputError(band + ": frame shape differs from band 0's (shards of different runs?)");
+                   !same_presets(b.warp, out.warp)) {
+            throw InputError(band + ": frame shape or warp presets differ from band 0's (shards of different runs?)");
         }
         if (b.task_begin != next_task)
             throw InputError(band + ": starts at task " + std::to_string(b.task_begin) + ", expected " +
                              std::to_string(next_task) + " (a band is missing or repeated)");
         next_task = b.task_begin + b.tasks.size();
         for (const FrameTask& t : b.tasks) {  // the single run's order: task 0, 1, 2, ...
-            if (t.warp.size() != presets) throw InputError(band + ": a task's warp presets differ");
+            if (t.warp.size() != out.warp.size()) throw InputError(band + ": a task's warp presets differ");
             out.totals += t.totals;
             out.rays_traced += t.rays_traced;
-            for (std::size_t p = 0; p < presets; ++p) out.warp[p] += t.warp[p];
+            for (std::size_t p = 0; p < out.warp.size(); ++p) out.warp[p] += t.warp[p];
         }
         // Items: pixels of the frame, or rays of the list (up to this band's end).
         const std::size_t items = out.width ? static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height)
@@ -288,13 +322,9 @@ FrameResult merge_frame_bands(std::size_t count, const std::function<FrameResult
         take_all(out.pixel_counts, b.pixel_counts);
         take_all(out.ray_counts, b.ray_counts);
         take_all(out.radiance, b.radiance);
-        take_all(out.pixel_warp_cycles, b.pixel_warp_cycles);
+        for (std::size_t p = 0; p < out.warp.size(); ++p) take_all(out.warp[p].pixel_cycles, b.warp[p].pixel_cycles);
         take_all(out.pixel_simt_active, b.pixel_simt_active);
         take_all(out.pixel_simt_slots, b.pixel_simt_slots);
-        if (out.more_pixel_warp_cycles.size() < b.more_pixel_warp_cycles.size())
-            out.more_pixel_warp_cycles.resize(b.more_pixel_warp_cycles.size());
-        for (std::size_t k = 0; k < b.more_pixel_warp_cycles.size(); ++k)
-            take_all(out.more_pixel_warp_cycles[k], b.more_pixel_warp_cycles[k]);
         out.item_end = b.item_end;
         out.rays.insert(out.rays.end(), b.rays.begin(), b.rays.end());
         out.hits.insert(out.hits.end(), b.hits.begin(), b.hits.end());

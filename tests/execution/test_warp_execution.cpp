@@ -123,7 +123,9 @@ TEST_CASE("warp pricing: a two-lane wave by hand") {
 TEST_CASE("warp execution: same counts and hits as per ray, records re-price exactly, thread-count independent") {
     const TestFrame f = tilted_bundle(40, 28);  // 5 x 7 tiles of 8 x 4
     MethodOptions mo;
-    const CostModel a = test_model(32.0), b = test_model(4.0);
+    const CostModel a = test_model(32.0);
+    CostModel b = test_model(4.0);
+    b.name = "test-4";  // results are found by preset name
     ExecutionModel grouping = a.execution;
     for (const char* name : {"ref", "obb"}) {
         CAPTURE(name);
@@ -141,19 +143,21 @@ TEST_CASE("warp execution: same counts and hits as per ray, records re-price exa
         CHECK(warp1.radiance == per_ray.radiance);
         // Threads change nothing.
         REQUIRE(warp2.warp.size() == 2);
-        CHECK(warp2.warp[0].lone_wave_cycles() == warp1.warp[0].lone_wave_cycles());
-        CHECK(warp2.warp[1].lone_wave_cycles() == warp1.warp[1].lone_wave_cycles());
-        CHECK(warp2.pixel_warp_cycles == warp1.pixel_warp_cycles);
+        CHECK(warp2.warp[0].totals.lone_wave_cycles() == warp1.warp[0].totals.lone_wave_cycles());
+        CHECK(warp2.warp[1].totals.lone_wave_cycles() == warp1.warp[1].totals.lone_wave_cycles());
+        CHECK(warp2.warp[0].pixel_cycles == warp1.warp[0].pixel_cycles);
+        CHECK(warp2.warp[1].pixel_cycles == warp1.warp[1].pixel_cycles);
         CHECK(warp2.pixel_simt_active == warp1.pixel_simt_active);
         // One wave per tile, sample and bounce that had rays.
-        CHECK(warp1.warp[0].waves >= 35u * 2u);
-        CHECK(warp1.warp[0].lanes == warp1.rays_traced);
+        CHECK(warp1.warp[0].totals.waves >= 35u * 2u);
+        CHECK(warp1.warp[0].totals.lanes == warp1.rays_traced);
         // Re-pricing the records gives what was priced while tracing.
-        CHECK(warp1.warp_trace.waves() == warp1.warp[0].waves);
-        for (const CostModel* m : {&a, &b}) {
+        CHECK(warp1.warp_trace.waves() == warp1.warp[0].totals.waves);
+        for (const CostModel* m : {&a, static_cast<const CostModel*>(&b)}) {
             EffectiveCounts eff{};
             const WarpTotals again = warp1.warp_trace.price(*m, Roofline{}, eff);
-            const WarpTotals& live = warp1.warp[m == &a ? 0 : 1];
+            const WarpTotals& live = warp1.warp[m == &a ? 0 : 1].totals;
+            CHECK(warp1.warp_of(m->name) == &warp1.warp[m == &a ? 0 : 1]);
             CHECK(again.lone_wave_cycles() == doctest::Approx(live.lone_wave_cycles()).epsilon(1e-12));
             CHECK(again.rounds == live.rounds);
             CHECK(again.active_lane_rounds == live.active_lane_rounds);
@@ -162,11 +166,11 @@ TEST_CASE("warp execution: same counts and hits as per ray, records re-price exa
             CHECK(linear == doctest::Approx(again.lone_wave_cycles()).epsilon(1e-9));
         }
         // Warps pay their slowest lane: never less than the per-ray sum over W lanes in parallel.
-        CHECK(warp1.warp[0].simt_efficiency(32) <= 1.0);
-        CHECK(warp1.warp[0].simt_efficiency(32) > 0.0);
+        CHECK(warp1.warp[0].totals.simt_efficiency(32) <= 1.0);
+        CHECK(warp1.warp[0].totals.simt_efficiency(32) > 0.0);
         double pixel_sum = 0.0;
-        for (const float c : warp1.pixel_warp_cycles) pixel_sum += c;
-        CHECK(pixel_sum == doctest::Approx(warp1.warp[0].lone_wave_cycles()).epsilon(1e-4));
+        for (const float c : warp1.warp[0].pixel_cycles) pixel_sum += c;
+        CHECK(pixel_sum == doctest::Approx(warp1.warp[0].totals.lone_wave_cycles()).epsilon(1e-4));
     }
 }
 
@@ -187,8 +191,9 @@ TEST_CASE("warp execution: ray lists run W consecutive rays per wave") {
     o.warp_presets = {&m};
     const FrameResult r = method->run(f.geometry, list, TraceOptions{}, o);
     CHECK(r.totals == cam.totals);
-    CHECK(r.warp[0].waves == (cam.rays.size() + 31) / 32);
-    CHECK(r.warp[0].lanes == cam.rays.size());
+    CHECK(r.warp[0].totals.waves == (cam.rays.size() + 31) / 32);
+    CHECK(r.warp[0].totals.lanes == cam.rays.size());
+    CHECK(r.warp[0].pixel_cycles.empty());  // a ray list has no pixels
 }
 
 namespace {

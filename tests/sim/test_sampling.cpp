@@ -251,7 +251,7 @@ TEST_CASE("sampled run: traces exactly the full run's sampled tiles and scales t
                 const std::size_t i = static_cast<std::size_t>(y) * w + x;
                 const bool in = s.traced_pixel(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
                 CHECK((m.frame.pixel_counts[i].n == (in ? f.frame.pixel_counts[i].n : RayCounts{}.n)));
-                CHECK(m.frame.pixel_warp_cycles[i] == (in ? f.frame.pixel_warp_cycles[i] : 0.0f));
+                CHECK(m.frame.warp[0].pixel_cycles[i] == (in ? f.frame.warp[0].pixel_cycles[i] : 0.0f));
                 if (in) {
                     traced.add(f.frame.pixel_counts[i]);
                     ++pixels_traced;

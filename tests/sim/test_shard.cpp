@@ -228,7 +228,20 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
     // refused with the file's name, before anything large is allocated. (A
     // huge task count alone is consistent; the merge refuses the band.)
     const std::size_t shift = 4 + length;  // the fields after the identity
-    for (const std::size_t at : std::initializer_list<std::size_t>{16, 16 + shift, 20 + shift, 24 + shift, 36 + shift, 44 + shift, 60 + shift}) {
+    // The warp presets (a count, then per preset a name's length and text
+    // and a draw count) come before the frame's size, at `shape`.
+    std::uint32_t presets = 0;
+    std::memcpy(&presets, bytes.data() + 16 + shift, 4);
+    REQUIRE(presets <= 4);
+    std::size_t shape = 20 + shift;
+    for (std::uint32_t p = 0; p < presets; ++p) {
+        std::uint32_t name = 0;
+        std::memcpy(&name, bytes.data() + shape, 4);
+        REQUIRE(name < 200);
+        shape += 4 + name + 4;
+    }
+    for (const std::size_t at : std::initializer_list<std::size_t>{16, 16 + shift, 20 + shift, shape, shape + 4, shape + 16,
+                                                                   shape + 24, shape + 40}) {
         CAPTURE(at);
         std::string bad = bytes;
         for (std::size_t k = at; k < at + 8; ++k) bad[k] = static_cast<char>(0xFF);
@@ -242,10 +255,10 @@ TEST_CASE("shard merge: missing, repeated, foreign and damaged shards fail namin
     {
         std::string big = bytes;
         const std::int32_t side = 40000;
-        std::memcpy(big.data() + 20 + shift, &side, 4);
-        std::memcpy(big.data() + 24 + shift, &side, 4);
+        std::memcpy(big.data() + shape, &side, 4);
+        std::memcpy(big.data() + shape + 4, &side, 4);
         std::ofstream(frame, std::ios::binary | std::ios::trunc).write(big.data(), static_cast<std::streamsize>(big.size()));
-        const std::string refused = frame.string() + ": byte " + std::to_string(20 + shift) +
+        const std::string refused = frame.string() + ": byte " + std::to_string(shape) +
                                     ": a 40000 x 40000 frame, the config's is a 48 x 48 frame";
         CHECK_THROWS_WITH_AS((void)read_frame_file(frame.string(), identity, {48, 48}), refused.c_str(), InputError);
         has(merge_error({s0.string(), s1.string()}), "a 40000 x 40000 frame, the config's is a 48 x 48 frame");
