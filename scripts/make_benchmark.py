@@ -420,6 +420,25 @@ def rates(t):
     return f"{sig(t[0])} [{sig(t[1])}-{sig(t[2])}]"
 
 
+def load_range(meta):
+    loads = [x for s in meta["steps"].values() for x in s["load_average"]]
+    return min(loads), max(loads)
+
+
+def load_note(meta):
+    """Said when the machine had more runnable tasks than cores during the runs."""
+    if not meta["steps"]:
+        return ""
+    lo, hi = load_range(meta)
+    cores = meta["machine"].get("cores") or 1
+    if hi <= cores:
+        return ""
+    return (f" The machine was oversubscribed during these runs (load average {lo:.1f}-{hi:.1f} on {cores} cores): "
+            "the absolute rates, the builder's M capsules/s and the 2-thread scalings measure that load as much as "
+            "the code; the ratios measured side by side (Embree, warp price) less so, and the instruction counts not "
+            "at all.")
+
+
 def machine_block(meta):
     m, b = meta["machine"], meta["build"]
     rows = [("CPU", m["cpu"]), ("cores", str(m["cores"])),
@@ -430,7 +449,8 @@ def machine_block(meta):
             ("Embree", b.get("embree") or "not installed"),
             ("commit", b["commit"]),
             ("run", "quick (`--quick`)" if meta.get("quick") else "full"),
-            ("dates", ", ".join(sorted({s["date"][:10] for s in meta["steps"].values()})))]
+            ("dates", ", ".join(sorted({s["date"][:10] for s in meta["steps"].values()}))),
+            ("load average", "%.1f-%.1f during the runs" % load_range(meta) if meta["steps"] else "-")]
     return "| | |\n|---|---|\n" + "\n".join(f"| {k} | {v} |" for k, v in rows) + \
         f"\n\nMade by `{SCRIPT}` from `run.json` of the runs below."
 
@@ -654,7 +674,7 @@ def targets_block(meta, figures):
     lines = ["| target | source | measured | met? |", "|---|---|---|---|"]
     lines += [f"| {a} | {b} | {c} | {d} |" for a, b, c, d in rows]
     return "\n".join(lines) + "\n\nThe verdicts are computed by `" + SCRIPT + "` from the figures in the sections " \
-        "below, at commit " + meta["build"]["commit"] + " on " + machine_line(meta) + "."
+        "below, at commit " + meta["build"]["commit"] + " on " + machine_line(meta) + "." + load_note(meta)
 
 
 def blocks(meta, figures):
