@@ -42,7 +42,6 @@ import os
 import platform
 import re
 import shlex
-import statistics
 import subprocess
 import sys
 import time
@@ -74,8 +73,8 @@ def steps(quick, head_base=None):
     cg = ["1:ref:64", "1:obb:64", "2:ref:100", "2:obb:100"] + ([] if q else ["3:obb:16"])
     cg += [s + ":warp" for s in ["1:ref:64", "1:obb:64", "2:ref:100", "2:obb:100"]]
     out = {
-        "bench": ["{bench}", "--cases", "1,2,3" if q else "1,2,3,4,5", "--threads", "1,2", "--repeat", "2" if q else "3"]
-        + (["--pixels", "64"] if q else []) + ["--json", "{out}/bench.json"],
+        "bench": ["{bench}", "--cases", "1,2,3" if q else "1,2,3,4,5", "--threads", "1,2",
+                  "--repeat", "2" if q else "3"] + (["--pixels", "64"] if q else []) + ["--json", "{out}/bench.json"],
         "embree": ["{bench}", "--embree", "--cases", "1,2", "--threads", "1,2", "--repeat", "3" if q else "5"]
         + (["--pixels", "64"] if q else []),
         "embree3": ["{bench}", "--embree", "--cases", "3", "--pixels", "32" if q else "64", "--threads", "1,2",
@@ -146,9 +145,9 @@ def compiled(path):
 
 def build_info(build):
     """The binaries' checkout (from the build's CMakeCache.txt), its commit and the compiler. The commit is marked
-    +dirty when a tracked source file (compiled()) of the checkout differs from it and is older than the bench binary (changed before
-    the build; a change made after it is not in the binary), and "(binaries older than it)" when a file of a
-    commit made after the build was changed after it (the binaries are then of an earlier state)."""
+    +dirty when a tracked source file (compiled()) of the checkout differs from it and is older than the bench
+    binary (changed before the build; a change made after it is not in the binary), and "(binaries older than
+    it)" when a file of a commit made after the build was changed after it (the binaries are of an earlier state)."""
     cache = cmake_cache(build)
     src = cache.get("CMAKE_HOME_DIRECTORY", ROOT)
     commit = git(src, "rev-parse", "--short", "HEAD") or "unknown"
@@ -177,7 +176,8 @@ def build_info(build):
                                 text=True).stdout.strip()
     except OSError:
         pass
-    return {"commit": commit + ("+dirty" if dirty else "") + (" (binaries older than it)" if older else ""), "build_type": cache.get("CMAKE_BUILD_TYPE", ""),
+    return {"commit": commit + ("+dirty" if dirty else "") + (" (binaries older than it)" if older else ""),
+            "build_type": cache.get("CMAKE_BUILD_TYPE", ""),
             "compiler": compiler, "x86_64_v3": cache.get("RTCSIM_RUNS_X86_64_V3") == "1" and
             cache.get("RTCSIM_X86_64_V3", "AUTO") != "OFF", "embree": embree}
 
@@ -384,7 +384,7 @@ def load(directory):
 # ---------------------------------------------------------------- tables
 
 def machine_line(meta):
-    m, b = meta["machine"], meta["build"]
+    m = meta["machine"]
     mem = f", {m['memory_gib']} GiB" if m.get("memory_gib") else ""
     return f"{m['cpu']} ({m['cores']} cores{mem}), {m['os']}, Linux {m['kernel']}"
 
@@ -494,8 +494,8 @@ def embree_block(meta, figures):
     if not any(figures.get(n, {}).get("embree_built", False) for n in ("embree", "embree3")):
         return "Not measured: this build has no Embree 3 (`bench --embree` exited 77).\n\n" + \
             stamp(meta, "embree", "embree3")
-    lines = ["| case | method | threads | rtcsim Mrays/s | Embree Mrays/s | rtcsim / Embree | rays | hits (rtcsim, Embree; "
-             "one side only; max dt/t) |", "|---|---|---|---|---|---|---|---|"]
+    lines = ["| case | method | threads | rtcsim Mrays/s | Embree Mrays/s | rtcsim / Embree | rays | "
+             "hits (rtcsim, Embree; one side only; max dt/t) |", "|---|---|---|---|---|---|---|---|"]
     for cid, method, t, m in embree_rows(figures):
         hits = f"{m['hits_rtcsim']:,}, {m['hits_embree']:,}; {m['one_side_only']}; {m['max_relative_dt']:.2g}" + \
             ("" if m["hits_agree"] else " **HITS DIFFER**")
@@ -579,7 +579,8 @@ def head_block(meta, head):
     if not bt:
         return "Not measured in this run (it needs a build of c2fe590: `--head-base`, see Rerun)."
     lines = ["| measure | c2fe590 / this commit, per pair | median |", "|---|---|---|"]
-    for key, label in (("builds_traces", "builds + traces"), ("total", "report's total"), ("wall", "process wall time")):
+    for key, label in (("builds_traces", "builds + traces"), ("total", "report's total"),
+                       ("wall", "process wall time")):
         if key in head:
             lines.append(f"| {label} | {' '.join(f'{x:.2f}' for x in head[key]['per_pair'])} | "
                          f"{head[key]['median']:.2f}x |")
@@ -663,7 +664,8 @@ def targets_block(meta, figures):
     big = [b for b in fur if b["primitives"] >= 19_000_000]
     if big:
         cpu = big[0].get("cpu_seconds_per_grouping", float("nan"))
-        rows.append((f"the 20 M fur's cluster grouping <= a quarter of the 190-284 s before b7f2add ({FUR_CPU_S:.1f} s)",
+        rows.append((f"the 20 M fur's cluster grouping <= a quarter of the 190-284 s before b7f2add "
+                     f"({FUR_CPU_S:.1f} s)",
                      "issue 39, docs/beyond.md", f"{cpu:.1f} CPU-s ({big[0]['best_seconds']:.0f} s wall)",
                      verdict(cpu <= FUR_CPU_S, False)))
     else:
