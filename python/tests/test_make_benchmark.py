@@ -137,6 +137,11 @@ def test_tables_hold_the_figures_and_computed_verdicts(tmp_path):
         assert "`nice -n 10 build/" in texts[name] and "at commit abc1234 on Test CPU 9000 (2 cores, 24 GiB)" in \
             texts[name], name
     assert "| CPU | Test CPU 9000 |" in texts["machine"] and "| commit | abc1234 |" in texts["machine"]
+    assert "oversubscribed" not in texts["targets"]
+    # A builder run on a machine with more runnable tasks than cores: its absolute verdicts say so.
+    meta["steps"]["builder"]["load_average"] = [5.0, 6.0]
+    loaded = m.blocks(meta, figures)["targets"]
+    assert "| **no** (at load average 6.0 on 2 cores) |" in loaded and "oversubscribed" in loaded
 
 
 def test_update_rewrites_only_the_generated_blocks(tmp_path):
