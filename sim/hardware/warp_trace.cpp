@@ -52,7 +52,10 @@ WarpTotals WarpTrace::price(const CostModel& m, const Roofline& roof, EffectiveC
     return totals;
 }
 
-WarpTotals WarpTrace::price_waves(const CostModel& m, EffectiveCounts* eff, EffectiveCounts* rt_lanes) const {
+WarpTotals WarpTrace::price_reference(const CostModel& m) const { return price_waves(m, nullptr, nullptr, true); }
+
+WarpTotals WarpTrace::price_waves(const CostModel& m, EffectiveCounts* eff, EffectiveCounts* rt_lanes,
+                                  bool reference) const {
     WarpTotals totals;
     ProgramPrices prices;
     WaveWork wave;
@@ -70,7 +73,8 @@ WarpTotals WarpTrace::price_waves(const CostModel& m, EffectiveCounts* eff, Effe
         const std::size_t c1 = l1 < nl ? lane_first_call_[l1] : call_profile_.size();
         wave.calls.assign(call_profile_.begin() + static_cast<std::ptrdiff_t>(c0),
                           call_profile_.begin() + static_cast<std::ptrdiff_t>(c1));
-        totals.add(price_wave(wave, m, prices, eff), wave.lanes.size());
+        totals.add(reference ? price_wave_reference(wave, m, prices, eff) : price_wave(wave, m, prices, eff),
+                   wave.lanes.size());
         if (rt_lanes) add_rt_lane_counts(*rt_lanes, wave, m);
     }
     return totals;

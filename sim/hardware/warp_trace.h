@@ -33,11 +33,15 @@ public:
     // The same, and the effective counts whose linear price is the frame's
     // cycles on the SM of `roof` (totals.cycles(roof)).
     [[nodiscard]] WarpTotals price(const CostModel& model, const Roofline& roof, EffectiveCounts& effective) const;
+    // Every wave priced by price_wave_reference, the lane-by-lane
+    // specification the fast pricers are tested against.
+    [[nodiscard]] WarpTotals price_reference(const CostModel& model) const;
 
 private:
     // Every wave priced; `eff` (if set) gets their effective counts, and
     // `rt_lanes` (if set) every lane's RT-unit counts.
-    [[nodiscard]] WarpTotals price_waves(const CostModel& model, EffectiveCounts* eff, EffectiveCounts* rt_lanes) const;
+    [[nodiscard]] WarpTotals price_waves(const CostModel& model, EffectiveCounts* eff, EffectiveCounts* rt_lanes,
+                                         bool reference = false) const;
     [[nodiscard]] std::uint32_t calls_of(std::size_t lane) const {
         const std::size_t end = lane + 1 < lane_first_call_.size() ? lane_first_call_[lane + 1] : call_profile_.size();
         return static_cast<std::uint32_t>(end - lane_first_call_[lane]);

@@ -281,24 +281,40 @@ TEST_CASE("lockstep events: a shader traversal loop costs the wave its slowest l
     CHECK(eff[static_cast<std::size_t>(Event::BlasNodeVisit)] == 10.0);
 }
 
-TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wave pricing (rdna3, rdna4)") {
+TEST_CASE("pricing engine: on every shipped warp preset, live, batched-draw, break-even and re-pricing equal the reference pricer") {
+    // The specification of a wave's price is price_wave_reference (lane by
+    // lane). The fast pricers must agree with it under every preset a user
+    // can name, lockstep events (rdna3, rdna4), SM rooflines and composed
+    // costs included: the waves priced while tracing, the recorded waves
+    // re-priced, the batched draws of the intervals and the break-even
+    // maps' linear counts.
     const fs::path dir = fs::path(RTCSIM_BINARY_DIR) / "derived_presets_test";
     fs::create_directories(dir);
-    // One run each: rdna3 builds 4-wide nodes, rdna4 8-wide (execution.bvh_width).
-    for (const char* preset : {"rdna3.json", "rdna4.json"}) {
+    std::vector<std::string> presets;
+    for (const fs::path& folder : {fs::path(kHw), fs::path(kHw) / "sensitivity"})
+        for (const auto& entry : fs::directory_iterator(folder)) {
+            const std::string file = entry.path().filename().string();
+            if (entry.path().extension() == ".json" && file.rfind("memory-", 0) != 0 &&
+                load_cost_model(entry.path().string()).execution.warp())
+                presets.push_back(entry.path().string());
+        }
+    std::sort(presets.begin(), presets.end());
+    CHECK(presets.size() >= 16);  // 10 in configs/hw (the guesses, turing-calibrated, turing-sm, ..., rdna4), 6 AMD variants
+    // One run each: a preset's node width is the run's (rdna4: 8-wide).
+    for (const std::string& preset : presets) {
         CAPTURE(preset);
         const nlohmann::json config = {
             {"name", "lockstep"},
             {"scene", {{"type", "bundle"}, {"count", 60}, {"radius", 0.01}, {"tilt_deg", 30}, {"seed", 2}}},
             {"primitives", {{"kind", "capsule"}}},
             {"methods", {"ref", "obb"}},
-            {"cost", nlohmann::json::array({kHw + preset})},
+            {"cost", nlohmann::json::array({preset})},
             {"memory", kHw + "memory-optix7.json"},
             {"workload", {{"type", "camera"}, {"camera", "auto"}, {"width", 16}, {"height", 16}, {"spp", 1}, {"bounces", 1}}},
             {"output", {{"images", false}, {"arrays", false}}},
             {"uncertainty", {{"draws", 8}, {"seed", 3}}}};
         const RunConfig c = parse_run_config(config, (dir / "c.json").string());
-        CHECK(c.build.tlas.width == c.costs[0]->execution.bvh_width);
+        if (c.costs[0]->execution.bvh_width > 0) CHECK(c.build.tlas.width == c.costs[0]->execution.bvh_width);
         RunContext ctx;
         ctx.quiet = true;
         ctx.threads = 1;
@@ -308,17 +324,24 @@ TEST_CASE("lockstep events: batched draws and break-even counts equal wave-by-wa
         const std::vector<CostModel> draws = draw_cost_models(r.costs[p], 8, 3);
         for (const MethodRun& m : r.methods) {
             CAPTURE(m.method);
+            REQUIRE(m.frame.warp_trace.waves() > 0);  // recorded (record_warps)
+            const WarpTotals reference = m.frame.warp_trace.price_reference(r.costs[p]);
+            const WarpTotals& live = m.frame.warp_of(r.costs[p].name)->totals;
+            CHECK(live.lone_wave_cycles() == doctest::Approx(reference.lone_wave_cycles()).epsilon(1e-12));
+            CHECK(live.rt_lane_sum == doctest::Approx(reference.rt_lane_sum).epsilon(1e-12));
+            CHECK(live.rounds == reference.rounds);
+            CHECK(live.active_lane_rounds == reference.active_lane_rounds);
+            CHECK(m.priced[p].total_cycles == doctest::Approx(reference.cycles(m.roof[p])).epsilon(1e-12));
             CHECK(m.priced[p].total_cycles == doctest::Approx(m.frame.warp_trace.price(r.costs[p]).cycles(m.roof[p])).epsilon(1e-12));
             // Break-even maps price a method linearly around the preset: exact at it.
-            REQUIRE(m.frame.warp_trace.waves() > 0);  // recorded (record_warps)
-            CHECK(r.costs[p].execution.warp());
-            CHECK(m.roof[p].enabled);  // the AMD presets run on the SM model
+            CHECK(m.roof[p].enabled == r.costs[p].execution.sm.enabled);
             const auto linear = break_even_counts(m, &r.costs[p], m.roof[p]);
             double at_preset = 0.0;
             for (std::size_t i = 0; i < kEventCount; ++i) at_preset += linear[i] * r.costs[p].cycles[i];
             CHECK(at_preset == doctest::Approx(m.priced[p].total_cycles).epsilon(1e-12));
+            REQUIRE(m.draw_cycles[p].size() == draws.size());  // none for the guesses (no covariance)
             for (std::size_t d = 0; d < draws.size(); ++d)
-                CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price(draws[d]).cycles(m.roof[p])).epsilon(1e-12));
+                CHECK(m.draw_cycles[p][d] == doctest::Approx(m.frame.warp_trace.price_reference(draws[d]).cycles(m.roof[p])).epsilon(1e-12));
         }
     }
 }
