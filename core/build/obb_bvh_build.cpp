@@ -1,6 +1,6 @@
 // The oriented-node BVH builder (Woop et al. 2014, after Embree's
-// bvh_builder_hair.h); see core/obb_bvh.h for what it chooses and why.
-#include "core/obb_bvh.h"
+// bvh_builder_hair.h); see core/obb_build.h for what it chooses and why.
+#include "core/obb_build.h"
 
 #include <algorithm>
 #include <cmath>

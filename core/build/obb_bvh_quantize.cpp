@@ -1,5 +1,5 @@
 // RDNA4-style oriented nodes on a built AABB tree: one rotation per node from
-// a fixed table, chosen bottom up as AMD's GPURT does (core/obb_bvh.h).
+// a fixed table, chosen bottom up as AMD's GPURT does (core/obb_build.h).
 //
 // The rotation table. GPURT (src/shadersClean/common/ObbCommon.hlsli) packs
 // 104 rotations as 9 six-bit codes into 26 magnitudes plus a sign; the
@@ -15,7 +15,7 @@
 // Choosing an entry: GPURT converts a primitive's frame to axis-angle, bins
 // it and looks the index up (OrientedBoundingBoxes.hlsl); here the entry
 // whose best-aligned axis is closest to the primitive's direction is taken.
-#include "core/obb_bvh.h"
+#include "core/obb_build.h"
 
 #include <cmath>
 #include <numbers>

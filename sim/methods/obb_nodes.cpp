@@ -4,7 +4,7 @@
 // (kernels/builders/bvh_builder_hair.h, kernels/bvh/bvh_node_obb.h): the
 // builder picks, per split, the lowest SAH among a world-space object split,
 // an object split in the frame of the primitives' direction and a strand
-// split (core/obb_bvh.h); a node with an oriented split gives each child its
+// split (core/obb_build.h); a node with an oriented split gives each child its
 // own frame and box, tested by the RT unit with that child's transform
 // (obb_box_test per child, in place of blas_box_test). Leaf boxes of oriented
 // nodes are the primitives' own OBBs, so many rays are culled before a context
@@ -39,7 +39,7 @@ ObbTreeStructures build_obb_nodes(const Geometry& g, const MethodOptions& o) {
     std::visit([&](const auto& prims) {
         parallel_for(prims.size(), o.custom_blas.threads, [&](std::size_t i, unsigned) { boxes[i] = bounds(prims[i]); });
     }, g.prims);
-    ObbBuildOptions b;  // SAH costs: core/obb_bvh.h
+    ObbBuildOptions b;  // SAH costs: core/obb_build.h
     b.width = o.custom_blas.width;
     b.bins = o.custom_blas.bins;
     std::optional<ObbBvh> mesh;

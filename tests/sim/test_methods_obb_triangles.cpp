@@ -3,6 +3,7 @@
 // contains the triangles below it, every exact method returns ref's closest
 // hit on a triangle scene (with and without custom primitives), and the
 // oriented methods do rotate there.
+#include "core/obb_build.h"
 #include "sim/methods_test_util.h"
 
 #include <doctest/doctest.h>

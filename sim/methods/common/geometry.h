@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/aabb.h"
-#include "core/obb_bvh.h"
+#include "core/obb_frames.h"
 #include "intersectors/kinds.h"
 #include "intersectors/triangle.h"
 #include "scenes/convert.h"
@@ -27,7 +27,7 @@ struct Geometry {
 
 [[nodiscard]] Geometry make_geometry(const Scene& scene, PrimitiveKind kind, int subdivision);
 
-// Per primitive what the oriented-box builders bound (core/obb_bvh.h):
+// Per primitive what the oriented-box builders bound (core/obb_build.h):
 // segments as their end points with the largest radius (a flat-capped
 // cylinder lies inside the capsule of its radius), curves as their control
 // points with the largest radius (convex hull property).

@@ -7,7 +7,8 @@
 //   static float custom_leaf(const PrimitiveQuery&, Programs&);
 #pragma once
 
-#include "core/obb_bvh.h"
+#include "core/obb_build.h"
+#include "core/obb_nodes.h"
 #include "core/two_level.h"
 #include "sim/methods/method.h"
 
@@ -91,7 +92,7 @@ struct WorldRayLeaf {
 };
 
 // Two-level methods whose custom-primitive BLAS (BLAS 0) has oriented child
-// boxes (core/obb_bvh.h): obb-nodes (one transform per oriented child, priced
+// boxes (core/obb_frames.h): obb-nodes (one transform per oriented child, priced
 // as extra bytes per child) and obb-quantized (one table rotation per node,
 // no extra bytes). The TLAS is ref's; the mesh BLAS (BLAS 1) is ref's, or,
 // with MethodOptions::oriented_triangles, oriented the method's own way.

@@ -1,4 +1,4 @@
-#include "core/traverse.h"
+#include "core/box_test.h"
 
 namespace rtc {
 
