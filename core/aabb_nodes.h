@@ -15,16 +15,19 @@ namespace rtc {
 template <class BoxTest = BlockBoxTest>
 class AabbNodes {
 public:
-    AabbNodes(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tmin, float tmax)
-        : lanes_(bvh.lanes.data()), root_count_(bvh.root.count), ray_(origin, inv_dir, tmin),
-          tmax_(BoxTest::tmax(tmax)) {}
+    using Tmax = typename BoxTest::Tmax;
+
+    AabbNodes(const Bvh& bvh, const Vec3& origin, const Vec3& inv_dir, float tmin)
+        : lanes_(bvh.lanes.data()), root_count_(bvh.root.count), ray_(origin, inv_dir, tmin) {}
 
     // The root node's blocks come first (make_lanes).
     [[nodiscard]] BvhLaneBlock::Child root() const { return {0, root_count_}; }
 
     // Counts and tests the n children of the node whose blocks start at `first`.
+    [[nodiscard, gnu::always_inline]] static Tmax tmax(float t) { return BoxTest::tmax(t); }
+
     template <Event kBoxTest, class Sink>
-    [[nodiscard, gnu::always_inline]] unsigned test(std::uint32_t first, std::uint32_t n, Sink& sink,
+    [[nodiscard, gnu::always_inline]] unsigned test(std::uint32_t first, std::uint32_t n, Sink& sink, Tmax tmax,
                                                     float* tnear) {
         sink.add(kBoxTest, n);
         // The ray's broadcasts, as far as the compiler knows, changed in
@@ -34,10 +37,8 @@ public:
         // and were saved and restored at each leaf (obb's instance leaves: 14
         // moves each; cases 1 and 3 obb 4 % fewer instructions per ray).
         asm("" : "+m"(ray_));
-        return BoxTest::children(lanes_ + first, n, ray_, tmax_, tnear);
+        return BoxTest::children(lanes_ + first, n, ray_, tmax, tnear);
     }
-
-    void shrink(float tmax) { tmax_ = BoxTest::tmax(tmax); }
 
     // descend(child), child(i) = hit child i as a ChildHit.
     template <class Descend>
@@ -59,7 +60,6 @@ private:
     const BvhLaneBlock* lanes_;
     std::uint32_t root_count_;
     typename BoxTest::Ray ray_;
-    typename BoxTest::Tmax tmax_;
 };
 
 }  // namespace rtc

@@ -55,18 +55,21 @@ struct DRay {
 
 class ObbNodes {
 public:
-    ObbNodes(const Bvh& bvh, const ObbFrames& frames, const Ray& ray, float tmax)
+    ObbNodes(const Bvh& bvh, const ObbFrames& frames, const Ray& ray)
         : entries_(bvh.entries.data()), frame_of_(frames.frame_of.data()), frames_(frames.frames.data()),
           style_(frames.style), root_{bvh.root.first, bvh.root.count}, origin_(ray.origin),
-          inv_dir_(safe_inverse(ray.direction)), tmin_(ray.tmin), tmax_(tmax), o_(ray.origin),
+          inv_dir_(safe_inverse(ray.direction)), tmin_(ray.tmin), o_(ray.origin),
           d_(ray.direction) {}
 
     [[nodiscard]] BvhLaneBlock::Child root() const { return root_; }
 
     // The children of the node at entries [first, first + n), in order. A
     // rotated frame's ray is made once per run of children sharing it.
+    using Tmax = float;
+    [[nodiscard]] static Tmax tmax(float t) { return t; }
+
     template <Event kBoxTest, class Sink>
-    [[nodiscard]] unsigned test(std::uint32_t first, std::uint32_t n, Sink& sink, float* tnear) const {
+    [[nodiscard]] unsigned test(std::uint32_t first, std::uint32_t n, Sink& sink, float tmax, float* tnear) const {
         const BvhEntry* child = entries_ + first;
         const std::uint32_t* frame = frame_of_ + first;
         std::uint32_t current = kWorldFrame;
@@ -76,7 +79,7 @@ public:
             float t;
             if (frame[i] == kWorldFrame) {
                 sink.on(kBoxTest);
-                t = intersect_box(child[i].box, origin_, inv_dir_, tmin_, tmax_);
+                t = intersect_box(child[i].box, origin_, inv_dir_, tmin_, tmax);
             } else {
                 if (style_ == ObbStyle::PerChild) {
                     sink.on(Event::ObbBoxTest);
@@ -89,7 +92,7 @@ public:
                     local = {f.local(o_), obb_detail::safe_inverse(f.rot * d_)};
                     current = frame[i];
                 }
-                t = obb_detail::intersect_box(child[i].box, local, tmin_, tmax_);
+                t = obb_detail::intersect_box(child[i].box, local, tmin_, tmax);
             }
             tnear[i] = t;
             if (t != kInfinity) mask |= 1u << i;
@@ -97,7 +100,6 @@ public:
         return mask;
     }
 
-    void shrink(float tmax) { tmax_ = tmax; }
 
     template <class Descend>
     [[nodiscard]] ChildHit children(std::uint32_t first, std::uint32_t, const float* tnear,
@@ -113,7 +115,7 @@ private:
     ObbStyle style_;
     BvhLaneBlock::Child root_;
     Vec3 origin_, inv_dir_;
-    float tmin_, tmax_;
+    float tmin_;
     DVec3 o_, d_;
 };
 
@@ -121,7 +123,7 @@ private:
 template <TraversalMode Mode, class Sink, class LeafFn>
 float traverse_obb(const Bvh& bvh, const ObbFrames& frames, const Ray& ray, float tmax, Sink& sink,
                    LeafFn&& on_leaf) {
-    return traverse_nodes<Mode, kBlasEvents>(ObbNodes(bvh, frames, ray, tmax), ray.tmin, tmax, sink, on_leaf);
+    return traverse_nodes<Mode, kBlasEvents>(ObbNodes(bvh, frames, ray), ray.tmin, tmax, sink, on_leaf);
 }
 
 }  // namespace rtc

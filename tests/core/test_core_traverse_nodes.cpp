@@ -160,9 +160,9 @@ TEST_CASE("traverse: the kernel with the scalar box test walks as with the SIMD 
             const auto both = [&](auto mode) {
                 constexpr TraversalMode kMode = decltype(mode)::value;
                 const Walk simd =
-                    walk_nodes<kMode>(AabbNodes<>(bvh, ray.origin, inv, ray.tmin, ray.tmax), bvh, tris, ray);
+                    walk_nodes<kMode>(AabbNodes<>(bvh, ray.origin, inv, ray.tmin), bvh, tris, ray);
                 const Walk scalar = walk_nodes<kMode>(
-                    AabbNodes<ScalarBoxTest>(bvh, ray.origin, inv, ray.tmin, ray.tmax), bvh, tris, ray);
+                    AabbNodes<ScalarBoxTest>(bvh, ray.origin, inv, ray.tmin), bvh, tris, ray);
                 CHECK(same(simd, scalar));
             };
             both(std::integral_constant<TraversalMode, TraversalMode::Closest>{});
