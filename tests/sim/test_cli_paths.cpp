@@ -13,6 +13,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -328,6 +329,42 @@ TEST_CASE("sweep: points that differ only in presets are re-priced, not traced, 
                                  "cost=turing-per-ray-calibrated", kTiny, "--out", (dir / "single").string()});
     REQUIRE(simulate(single) == 0);
     CHECK(comparable(report_of(point3)) == comparable(report_of(dir / "single")));
+}
+
+TEST_CASE("sweep: re-priced points with their warp presets in another order keep each preset's pixel cycles and sampling interval") {
+    // Results are keyed by preset name (FrameResult::warp_of). Before, a
+    // re-priced point read the per-pixel cycles by position: with the
+    // presets reordered, cycles_<method>_<preset>.npy and the sampling
+    // intervals were another preset's.
+    const fs::path dir = scratch("reprice_order");
+    REQUIRE(simulate({"--set", "output.images=false", "--set", "workload.width=16", "--set", "workload.height=16",
+                      "--set", "output.rays=false", "--set", "output.hits=false", "--set",
+                      R"(sampling={"fraction": 0.5, "seed": 1})", "--set",
+                      R"(sweep={"cost": [["turing-calibrated", "turing-sm"], ["turing-sm", "turing-calibrated"], ["turing-calibrated", "turing-sm"]]})",
+                      kTiny, "--out", (dir / "sweep").string()}) == 0);
+    std::vector<fs::path> points;
+    for (const auto& e : fs::directory_iterator(dir / "sweep"))
+        if (e.is_directory()) points.push_back(e.path());
+    std::sort(points.begin(), points.end());  // 0_..., 1_..., 2_...
+    REQUIRE(points.size() == 3);
+    const json first = report_of(points[0]);
+    CHECK(first["provenance"]["repriced"] == false);
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        CAPTURE(i);
+        const json point = report_of(points[i]);
+        CHECK(point["provenance"]["repriced"] == true);
+        for (const char* preset : {"turing-calibrated", "turing-sm"}) {
+            CAPTURE(preset);
+            const json& want = first["speedup_sampling_interval_over_ref"]["obb"][preset];
+            REQUIRE(want.is_array());
+            CHECK(point["speedup_sampling_interval_over_ref"]["obb"][preset] == want);
+            for (const char* method : {"ref", "obb"}) {
+                const std::string npy = std::string("cycles_") + method + "_" + preset + ".npy";
+                CAPTURE(npy);
+                CHECK(read_text_file((points[i] / npy).string()) == read_text_file((points[0] / npy).string()));
+            }
+        }
+    }
 }
 
 }  // namespace RTCSIM_TEST_FILE
