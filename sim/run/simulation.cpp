@@ -374,11 +374,11 @@ std::optional<RunResult> reprice_run(const RunResult& traced, const RunConfig& c
         for (std::size_t k = 0; k < r.costs.size(); ++k) {
             if (!r.costs[k].execution.warp()) continue;
             PresetWarp w;
-            const CostModel* before = traced_preset(k);
-            for (PresetWarp& t : traced_warp)
-                if (before && t.preset == before->name) w = std::move(t);
+            bool traced_totals = false;
+            if (const CostModel* before = traced_preset(k))
+                for (PresetWarp& t : traced_warp)
+                    if (t.preset == before->name) w = std::move(t), traced_totals = true;
             w.preset = r.costs[k].name;
-            const bool traced_totals = before && before->execution.warp();
             if (!traced_totals) {
                 if (old.frame.warp_trace.waves() == 0) return std::nullopt;
                 w.totals = old.frame.warp_trace.price(r.costs[k]);
