@@ -56,6 +56,7 @@ options (--opt value or --opt=value):
   --set key.path=value  override any config key by its path, e.g.
                         --set workload.spp=1 --set scene.tilt_deg=30
                         --set 'methods=["obb"]'  (value parsed as JSON, else a string);
+                        a list's element by its index: --set sweep.scene.0.radius=1e-5;
                         paths set this way are relative to the config file, like
                         every path in it
   --quiet, -q           no progress bars or notes on stderr

@@ -5,6 +5,7 @@
 #include "sim/util/json_reader.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace rtc {
 
@@ -54,6 +55,18 @@ void set_by_path(nlohmann::json& config, const std::string& dotted_path,
                  const nlohmann::json& value, bool merge) {
     nlohmann::json* node = &config;
     for (const std::string& part : split_path(dotted_path)) {
+        if (node->is_array()) {
+            // A list is entered by an element's index; anything else would
+            // silently replace the whole list with an object.
+            const std::size_t n = node->size();
+            const bool digits = !part.empty() && part.size() <= 9 &&
+                                std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+            if (!digits || std::stoul(part) >= n)
+                throw std::out_of_range("\"" + part + "\" is not an index of the list there (0 to " +
+                                        std::to_string(n == 0 ? 0 : n - 1) + (n == 0 ? ", the list is empty)" : ")"));
+            node = &(*node)[std::stoul(part)];
+            continue;
+        }
         if (!node->is_object()) *node = nlohmann::json::object();
         node = &(*node)[part];
     }
@@ -78,7 +91,11 @@ void apply_set(nlohmann::json& config, const std::string& spec, const std::strin
     const std::string key = spec.substr(0, eq), text = spec.substr(eq + 1);
     nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
     if (value.is_discarded()) value = text;  // a bare word is a string
-    set_by_path(config, key, value);
+    try {
+        set_by_path(config, key, value);
+    } catch (const std::out_of_range& e) {
+        throw InputError(origin + ": --set " + shown_key(key) + ": " + e.what());
+    }
 }
 
 std::vector<std::string> sweep_key_order(const std::string& config_text, const std::vector<std::string>& sets) {
@@ -140,7 +157,11 @@ std::vector<SweepPoint> expand_sweep(const nlohmann::json& config, const std::st
         for (std::size_t a = 0; a < axes.size(); ++a) {
             const std::string& axis = axes[a].first;
             const nlohmann::json& v = axes[a].second[index[a]];
-            set_by_path(p.config, axis, v, /*merge=*/true);
+            try {
+                set_by_path(p.config, axis, v, /*merge=*/true);
+            } catch (const std::out_of_range& e) {
+                r.fail(axis, e.what());
+            }
             if (!v.is_object()) {
                 p.values[axis] = v;
                 add_label(axis, v);

@@ -26,7 +26,9 @@ void check_set_depth(const std::string& spec, const std::string& origin);
 
 // Sets `value` at a dotted path; with `merge`, an object value is merged into
 // an object already there (sweep axes pairing several keys) instead of
-// replacing it (--set).
+// replacing it (--set). A level that is a list is entered by an element's
+// index ("sweep.scene.0.radius"); throws std::out_of_range when that part is
+// not an index of the list.
 void set_by_path(nlohmann::json& config, const std::string& dotted_path,
                  const nlohmann::json& value, bool merge = false);
 

@@ -44,6 +44,33 @@ TEST_CASE("sweep: --set paths, JSON values and bare strings") {
     CHECK_THROWS_WITH_AS(apply_set(c, "novalue", "x.json"), doctest::Contains("x.json: --set novalue"), InputError);
 }
 
+TEST_CASE("sweep: --set enters a list by an element's index, and refuses anything else there") {
+    json c = {{"sweep", {{"scene", json::array({{{"name", "a"}, {"radius", 1}}, {{"name", "b"}, {"radius", 2}}})}}},
+              {"workload", {{"camera", {{"position", {0, 0, 1}}}}}}};
+    apply_set(c, "sweep.scene.1.radius=0.5", "x.json");
+    apply_set(c, "workload.camera.position.2=3", "x.json");
+    CHECK(c["sweep"]["scene"][0]["radius"] == 1);
+    CHECK(c["sweep"]["scene"][1]["radius"] == 0.5);
+    CHECK(c["sweep"]["scene"][1]["name"] == "b");
+    CHECK(c["workload"]["camera"]["position"] == json::array({0, 0, 3}));
+    const json before = c;
+    // Before, a name or an index past the end replaced the whole list with an object.
+    CHECK_THROWS_WITH_AS(apply_set(c, "sweep.scene.2.radius=1", "x.json"),
+                         doctest::Contains("x.json: --set sweep.scene.2.radius: \"2\" is not an index of the list there (0 to 1)"),
+                         InputError);
+    CHECK_THROWS_WITH_AS(apply_set(c, "sweep.scene.name=x", "x.json"), doctest::Contains("\"name\" is not an index"),
+                         InputError);
+    CHECK_THROWS_AS(apply_set(c, "sweep.scene.-1.radius=1", "x.json"), InputError);
+    CHECK_THROWS_AS(apply_set(c, "sweep.scene.99999999999.radius=1", "x.json"), InputError);
+    CHECK(c == before);
+    // The same rule for a sweep axis into a list of the base config.
+    const json axis = {{"workload", {{"camera", {{"position", {0, 0, 1}}}}}},
+                       {"sweep", {{"workload.camera.position.5", {1, 2}}}}};
+    CHECK_THROWS_WITH_AS((void)expand_sweep(axis, "x.json"),
+                         doctest::Contains("x.json: /sweep/workload.camera.position.5: \"5\" is not an index"),
+                         InputError);
+}
+
 TEST_CASE("sweep: cartesian product with paired object axes, first key slowest") {
     const json c = {{"scene", {{"type", "bundle"}, {"tilt_deg", 0}}},
                     {"sweep",
