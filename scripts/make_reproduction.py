@@ -4,7 +4,8 @@ reproduction runs, with the rtcsim Python module.
 
 usage: scripts/make_reproduction.py RUNS_DIR [--images DIR] [--trace [SIZE]] [--update docs/reproduction.md] > tables.md
 
-RUNS_DIR holds fig3/, curly/, hair/, hair_tight/, scivis/, memory/ as written by
+RUNS_DIR holds fig3/, curly/, curly_thin/, curly_thick/, hair/, hair_tight/, scivis/,
+memory/ as written by
   build/simulate configs/runs/<name>.json --out RUNS_DIR/<name>
 (or rtcsim.simulate; fig3/ by simulate calibrate, hair_tight/ by hair.json with
 the tight-OBB sweep of docs/reproduction.md). Prints the Markdown tables, each
@@ -15,6 +16,8 @@ a generated block of docs/reproduction.md:
   refit        fig3/calibrated_preset.json against the shipped preset (fig3/)
   table1       Table 1 on the curly stand-ins (curly/)
   targets      the predictions against their targets (curly/ and fig3/)
+  table1_radius  Table 1 at three hair radii (curly/, curly_thin/, curly_thick/: the
+               stand-ins' radius at the ends of the human range, see RADIUS_RUNS)
   hair, scivis predictions for the real models (hair/, scivis/)
   tight        paper OBBs against tight ones (hair/ and hair_tight/)
   memory       memory under three presets (memory/)
@@ -40,6 +43,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import generated_blocks  # noqa: E402 (next to this script)
+import paper_table1  # noqa: E402 (next to this script)
 from rtcsim_import import ROOT, import_rtcsim  # noqa: E402
 
 rtcsim = import_rtcsim()
@@ -173,14 +177,9 @@ def model_table(runs, preset):
     return "\n".join(lines), points
 
 
-# Table 1 of the paper (method.md): ref rays/s and the masquerade's speedup
-# per kind, for the two curly models the stand-ins of curly_table1.json mimic.
-TABLE1 = {
-    "curly lock": {"capsule": (4.1e6, 3.82), "link": (4.2e6, 4.03), "phantom /1": (81.3e3, 1.74),
-                   "phantom /2": (343.0e3, 2.37), "phantom /4": (1.3e6, 3.44), "phantom /8": (5.0e6, 3.65)},
-    "curly head": {"capsule": (15.5e6, 3.17), "link": (15.0e6, 3.27), "phantom /1": (1.0e6, 2.06),
-                   "phantom /2": (3.7e6, 2.73), "phantom /4": (12.2e6, 2.88)},
-}
+# Table 1 of the paper: ref rays/s and the masquerade's speedup per kind
+# (scripts/paper_table1.py).
+TABLE1 = paper_table1.TABLE1
 
 
 def speedup_interval(r, preset, method="obb"):
@@ -255,6 +254,58 @@ def table1_predictions(runs, preset):
                  f"the paper's rays/s on {SMS} SMs at {BOOST_HZ / 1e9:.2f} GHz, beside the model's frame "
                  "cycles (on one SM's roofline) per ray.")
     lines.append("")
+    lines.append(stamp(runs, "curly_table1.json", [preset]))
+    return "\n".join(lines)
+
+
+# The stand-ins' hair radii (root -> tip) in the runs the radius table reads:
+# curly_table1.json's own and the two ends of the human range of hair
+# diameters, 15-120 um (Robbins 2002, "Chemical and Physical Behavior of
+# Human Hair", ch. 1, citing Kaswell 1953 (15-110 um) and Randebrook 1964
+# (40-120 um); BioNumbers 116402), as mean radii 7.5 and 60 um with the
+# stand-ins' 2:1 taper.
+RADIUS_RUNS = (("curly_thin", "10 -> 5 um"), ("curly", "40 -> 20 um"), ("curly_thick", "80 -> 40 um"))
+
+
+def radius_table(runs_by_dir, preset):
+    """Table 1 on the stand-ins at three hair radii: how much the guessed
+    radius (the primitives' length over radius) moves each prediction."""
+    cells = {}  # (model, kind) -> {dir: run}
+    for d, _ in RADIUS_RUNS:
+        for r in runs_by_dir.get(d, []):
+            cells.setdefault((model_name(r), kind_label(r)), {})[d] = r
+    head = " | ".join(f"radius {label}" for _, label in RADIUS_RUNS)
+    lines = [f"| model | kind | paper | {head} | paper within the radius range |",
+             "|---|---|---:|" + "---:|" * len(RADIUS_RUNS) + "---|"]
+    within = counted = 0
+    ratio_rows = []
+    for (model, kind), by_dir in cells.items():
+        target = TABLE1.get(model, {}).get(kind, (None, None))[1]
+        values = [by_dir[d].speedup("obb", preset) if d in by_dir else None for d, _ in RADIUS_RUNS]
+        shown = [f"{v:.2f}x" if v else "n/a" for v in values]
+        known = [v for v in values if v]
+        verdict = ""
+        if target and len(known) == len(RADIUS_RUNS):
+            counted += 1
+            lo, hi = min(known), max(known)
+            inside = lo <= target <= hi
+            within += inside
+            verdict = "yes" if inside else ("no (%.1f %% above)" % (100 * (target / hi - 1)) if target > hi
+                                            else "no (%.1f %% below)" % (100 * (1 - target / lo)))
+        lines.append(f"| {model} | {kind} | {f'{target:.2f}x' if target else ''} | {' | '.join(shown)} | {verdict} |")
+        if kind == "phantom /1":
+            caps = cells.get((model, "capsule"), {})
+            ratios = [by_dir[d].cycles_per_ray("ref", preset) / caps[d].cycles_per_ray("ref", preset)
+                      if d in by_dir and d in caps else None for d, _ in RADIUS_RUNS]
+            paper = paper_table1.ref_cost_over_capsule(model, "phantom /1")
+            ratio_rows.append(f"{model}: " + " / ".join(f"{v:.1f}" if v else "n/a" for v in ratios)
+                              + (f" (paper {paper:.1f})" if paper else ""))
+    lines.append("")
+    lines.append(f"Paper values within the range the three radii span: {within} of {counted} cells."
+                 + (" Reference cost of a phantom /1 ray over a capsule ray, thin / as shipped / thick: "
+                    + "; ".join(ratio_rows) + "." if ratio_rows else ""))
+    lines.append("")
+    runs = [r for d, _ in RADIUS_RUNS for r in runs_by_dir.get(d, [])]
     lines.append(stamp(runs, "curly_table1.json", [preset]))
     return "\n".join(lines)
 
@@ -593,6 +644,9 @@ def main():
         show("table1", f"Table 1 predictions (curly stand-ins, {PRESET})", table1_predictions(curly, PRESET))
     if curly and fig3:
         show("targets", "Against the targets", targets_table(curly, fig3, PRESET))
+    by_radius = {d: (curly if d == "curly" else load(d)) for d, _ in RADIUS_RUNS}
+    if all(by_radius.values()):
+        show("table1_radius", "Table 1 at three hair radii", radius_table(by_radius, PRESET))
     mem = load("memory")
     if mem:
         show("memory", "memory", memory_table(mem))
@@ -602,7 +656,7 @@ def main():
     if args.update:
         splice(args.update, blocks)
         missing = sorted({"calibration", "synthetic", "refit", "heatmaps", "hair", "scivis", "tight", "table1",
-                          "targets", "memory"} - set(blocks))
+                          "targets", "table1_radius", "memory"} - set(blocks))
         if missing:
             print(f"{args.update}: no runs for {', '.join(missing)}: those blocks left as they were", file=sys.stderr)
     os.makedirs(args.images, exist_ok=True)

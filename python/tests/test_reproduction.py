@@ -78,6 +78,33 @@ def test_make_reproduction(simulate, tmp_path):
     assert not (images / "table1_paper_vs_simulated.svg").exists()  # no Table 1 runs, no chart
 
 
+def test_make_reproduction_radius_table(simulate, tmp_path):
+    """The radius table sets each cell of the three radius runs side by side,
+    and says whether the paper's value lies in the range they span."""
+    runs = tmp_path / "runs"
+    # Named as the paper's model (a sweep's scene name labels its cells), so its cells are compared.
+    sweep = ["--set", 'sweep={"scene.name": ["curly lock"], "primitives": [{"kind": "capsule"}, {"kind": "phantom"}]}']
+    for name, radius in (("curly_thin", 0.002), ("curly", 0.01), ("curly_thick", 0.03)):
+        cli = simulate(TINY, "--quiet", "--out", runs / name, *SMALL, *CALIBRATED, *sweep,
+                       "--set", f"scene.radius={radius}")
+        assert cli.returncode == 0, cli.stderr
+    out = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "make_reproduction.py"), str(runs),
+                          "--images", str(tmp_path / "images")],
+                         capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
+    assert out.returncode == 0, out.stderr
+    table = out.stdout.split("\n## Table 1 at three hair radii\n", 1)[1].split("\n## ", 1)[0]
+    by_radius = {name: {r.kind: r.speedup("obb", "turing-calibrated") for r in rtcsim.load_reports(runs / name)}
+                 for name in ("curly_thin", "curly", "curly_thick")}
+    row = next(line for line in table.splitlines() if line.startswith("| curly lock | capsule | 3.82x |"))
+    cells = [by_radius[n]["capsule"] for n in ("curly_thin", "curly", "curly_thick")]
+    assert row.startswith("| curly lock | capsule | 3.82x | " + " | ".join(f"{v:.2f}x" for v in cells) + " | ")
+    inside = min(cells) <= 3.82 <= max(cells)
+    assert row.endswith("| yes |") if inside else "| no (" in row
+    assert "Paper values within the range the three radii span: " in table
+    assert "curly lock: " in table and "(paper 50.4)" in table  # the phantom /1 over capsule cost ratios
+    assert "--set scene.radius=0.002" in table  # the runs' overrides, in the stamp
+
+
 PAPER = {0: [1.05, 1.03, 1.04, 1.04], 15: [1.16, 1.16, 2.01, 3.83],  # the paper's synthetic table
          30: [1.10, 1.21, 1.91, 3.32], 45: [1.12, 1.22, 1.90, 3.20]}
 
