@@ -41,8 +41,8 @@ rtcsim = import_rtcsim()
 START = "turing-calibrated"
 OPS = ["op_fma", "op_div", "op_sqrt", "op_branch", "op_load"]
 GUIDE_FRACTION = 0.05  # turing-calibrated's operation prices are this fraction of the Guide's
-HANDOFFS = [50, 100, 200, 400, 800]
-SCALES = [0.05, 0.1, 0.2, 0.5, 1.0]  # of the CUDA Guide's throughput prices
+HANDOFFS = [50, 100, 150, 200, 300, 400, 800]
+SCALES = [0.05, 0.1, 0.2, 0.3, 0.5, 1.0]  # of the CUDA Guide's throughput prices
 DEEPEST = {"curly lock": 8, "curly head": 4}
 CAPSULE_TOLERANCE, LINK_RANGE, PHANTOM_FACTOR = 0.15, (0.9, 1.3), 2.0
 
