@@ -20,6 +20,7 @@ paper's (capsule speedup +/-15 %, link 0.9-1.3, phantom costs within 2x).
 
     scripts/table1_cost_map.py                      # 400 x 400, 1 path, 2 bounces: about 6 min on 2 cores
     scripts/table1_cost_map.py --update docs/reproduction.md
+    scripts/table1_cost_map.py --config tests/configs/table1_small.json --size 16   # the test's miniature
 """
 
 import argparse
@@ -84,8 +85,10 @@ def main():
     ap.add_argument("--size", type=int, default=400, help="pixels per side (default 400)")
     ap.add_argument("--threads", type=int, default=None)
     ap.add_argument("--update", metavar="DOC", help="rewrite the generated block of DOC (docs/reproduction.md)")
+    ap.add_argument("--config", default=os.path.join(ROOT, "configs", "runs", "curly_table1.json"),
+                    help="the Table 1 config whose two scenes are traced (default: configs/runs/curly_table1.json)")
     args = ap.parse_args()
-    with open(os.path.join(ROOT, "configs", "runs", "curly_table1.json")) as f:
+    with open(args.config) as f:
         base = json.load(f)
     lines = []
     t0 = time.time()
