@@ -6,6 +6,14 @@ make_beyond.py, make_benchmark.py); the rest of the file is left as it is."""
 import sys
 
 
+def commits_of(runs):
+    """The commits that made `runs` (results or reports: anything with the
+    report's `.data`), as a block's stamp names them ("+dirty": from a tree
+    with uncommitted changes)."""
+    return ", ".join(sorted({r.data.get("provenance", {}).get("git_commit", "unknown") +
+                             ("+dirty" if r.data.get("provenance", {}).get("git_dirty") else "") for r in runs}))
+
+
 def splice(path, texts, script, absent_ok=True):
     """Replaces each block NAME of `path` (texts: NAME -> text) with its text,
     ended by one newline. A block `path` does not have is said on stderr and

@@ -58,10 +58,7 @@ LOCK_OPS = "turing-calibrated-lock-ops"  # the same fit with the operation scale
 PER_RAY = "turing-per-ray-calibrated"
 
 
-def commits_of(runs):
-    """The commits that made `runs` ("+dirty": from a tree with uncommitted changes)."""
-    return ", ".join(sorted({r.data.get("provenance", {}).get("git_commit", "unknown") +
-                             ("+dirty" if r.data.get("provenance", {}).get("git_dirty") else "") for r in runs}))
+commits_of = generated_blocks.commits_of
 
 
 def overrides_of(runs):

@@ -12,6 +12,17 @@ TABLE1 = {
 }
 
 
+def cell_of(result):
+    """(model, kind) of a traced point of a Table 1 config, as TABLE1 names
+    its cells: the scene's name and the kind, phantom curves with their
+    pre-subdivision ("phantom /4")."""
+    c = result.config  # the point's effective config
+    kind = c["primitives"]["kind"]
+    if kind == "phantom":
+        kind = f"phantom /{c['primitives'].get('subdivision', 1)}"
+    return c["scene"]["name"], kind
+
+
 def speedup(model, kind):
     """The paper's obb speedup of a cell, or None."""
     return TABLE1.get(model, {}).get(kind, (None, None))[1]

@@ -27,7 +27,6 @@ import argparse
 import json
 import os
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples"))
@@ -48,21 +47,16 @@ DEEPEST = {"curly lock": 8, "curly head": 4}
 CAPSULE_TOLERANCE, LINK_RANGE, PHANTOM_FACTOR = 0.15, (0.9, 1.3), 2.0
 
 
-def model_at(handoff, scale):
-    m = rtcsim.load_cost_model(START)
-    base = rtcsim.load_cost_model(START).cycles
-    cycles = m.cycles
+def model_at(handoff, scale, start=None):
+    """START with the hand-off at `handoff` and the operation classes at
+    `scale` of the Guide's prices (`start`: START already loaded)."""
+    m = (start or rtcsim.load_cost_model(START)).copy()
+    cycles = m.cycles  # a copy of the prices, assigned back whole
     cycles[rtcsim.EVENT_INDEX["context_switch"]] = handoff
     for op in OPS:
-        i = rtcsim.EVENT_INDEX[op]
-        cycles[i] = base[i] * scale / GUIDE_FRACTION
+        cycles[rtcsim.EVENT_INDEX[op]] *= scale / GUIDE_FRACTION
     m.cycles = cycles
     return m
-
-
-def kind_of(result):
-    p = result.config["primitives"]
-    return p["kind"] if p["kind"] != "phantom" else f"phantom /{p.get('subdivision', 1)}"
 
 
 def cell_text(values, model):
@@ -92,25 +86,17 @@ def main():
         base = json.load(f)
     lines = []
     t0 = time.time()
-    commit = "?"
+    start = rtcsim.load_cost_model(START)
+    traced = []
     for scene in base["sweep"]["scene"]:
         model = scene["name"]
-        config = dict(base)
-        config["sweep"] = {"scene": [scene],
-                           "primitives": [{"kind": "capsule"}, {"kind": "link"}, {"kind": "phantom", "subdivision": 1},
-                                          {"kind": "phantom", "subdivision": DEEPEST[model]}]}
-        config["cost"] = [START]
-        config["workload"] = dict(base["workload"], width=args.size, height=args.size, spp=1)
-        config.pop("sampling", None)
-        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
-            json.dump(config, f)
-            path = f.name
-        try:
-            results = rtcsim.sweep(path, threads=args.threads, record_warps=True)
-        finally:
-            os.unlink(path)
-        prov = results[0].data.get("provenance", {})
-        commit = prov.get("git_commit", "?")[:7] + ("+dirty" if prov.get("git_dirty") else "")
+        sweep = {"scene": [scene],
+                 "primitives": [{"kind": "capsule"}, {"kind": "link"}, {"kind": "phantom", "subdivision": 1},
+                                {"kind": "phantom", "subdivision": DEEPEST[model]}]}
+        sets = [f"sweep={json.dumps(sweep)}", f'cost=["{START}"]', f"workload.width={args.size}",
+                f"workload.height={args.size}", "workload.spp=1", "sampling.fraction=1"]  # every tile
+        results = rtcsim.sweep(args.config, threads=args.threads, sets=sets, record_warps=True)
+        traced += results
         paper = [f"capsule {paper_table1.speedup(model, 'capsule'):.2f}x"] + \
             [f"{k} {paper_table1.ref_cost_over_capsule(model, k):.2f}" for k in
              ("link", "phantom /1", f"phantom /{DEEPEST[model]}")]
@@ -122,12 +108,12 @@ def main():
         for handoff in HANDOFFS:
             row = []
             for scale in SCALES:
-                m = model_at(handoff, scale)
+                m = model_at(handoff, scale, start)
                 values = {}
                 for r in results:
                     ref = rtcsim.price(r["ref"], m)
                     obb = rtcsim.price(r["obb"], m) if r["obb"].runnable else None
-                    values[kind_of(r)] = (ref.total_cycles / r["ref"].rays_traced,
+                    values[paper_table1.cell_of(r)[1]] = (ref.total_cycles / r["ref"].rays_traced,
                                           obb.total_cycles / r["obb"].rays_traced if obb else None)
                 row.append(cell_text(values, model))
             lines.append(f"| {handoff} | " + " | ".join(row) + " |")
@@ -138,7 +124,7 @@ def main():
                  f"within {PHANTOM_FACTOR:g}x of the paper's). `turing-calibrated` is the cell hand-off 100, s = 0.05. "
                  f"Made by `scripts/table1_cost_map.py` ({args.size} x {args.size}, 1 path, "
                  f"{base['workload']['bounces']} bounces, every tile traced; {(time.time() - t0) / 60:.0f} min, "
-                 f"commit {commit}).")
+                 f"commit {generated_blocks.commits_of(traced)}).")
     text = "\n".join(lines)
     print(text)
     if args.update:

@@ -48,12 +48,7 @@ GUIDE_FRACTION = 0.05
 SCALE_MIN, SCALE_MAX = 0.1, 80.0
 
 
-def cell(result):
-    c = result.config  # the point's effective config
-    kind = c["primitives"]["kind"]
-    if kind == "phantom":
-        kind = f"phantom /{c['primitives'].get('subdivision', 1)}"
-    return c["scene"]["name"], kind
+cell = paper_table1.cell_of
 
 
 def speedup(result, model):
@@ -180,7 +175,7 @@ def main():
                  f"Made by `scripts/table1_leave_one_out.py{' --joint' if args.joint else ''}` "
                  f"({w['width']} x {w['height']} x {w['spp']}, "
                  f"{w['bounces']} bounces, the config's sampling{fig3_note}; traced once in {traced / 60:.0f} min, "
-                 f"commit {results[0].data.get('provenance', {}).get('git_commit', '?')[:7]}).")
+                 f"commit {generated_blocks.commits_of(results + fig3)}).")
     text = "\n".join(lines)
     print(text)
     if args.update:

@@ -40,32 +40,30 @@ def test_grid_prices(cost_map):
     assert list(at_fit.cycles) == pytest.approx(list(base.cycles))  # the shipped preset is the grid's cell (100, 0.05)
 
 
-def values_for(model, capsule_speedup, link, phantom1, deepest):
+def values_for(deepest_kind, capsule_speedup, link, phantom1, deepest):
+    """cell_text's input: reference (and capsule obb) cycles per ray giving these figures."""
     cap_ref = 100.0
-    k = f"phantom /{cost_map_deepest(model)}"
     return {"capsule": (cap_ref, cap_ref / capsule_speedup), "link": (link * cap_ref, None),
-            "phantom /1": (phantom1 * cap_ref, None), k: (deepest * cap_ref, None)}
-
-
-def cost_map_deepest(model):
-    return {"curly lock": 8, "curly head": 4}[model]
+            "phantom /1": (phantom1 * cap_ref, None), deepest_kind: (deepest * cap_ref, None)}
 
 
 def test_cell_verdicts(cost_map):
     model = "curly lock"
+    k = f"phantom /{cost_map.DEEPEST[model]}"
     paper_ph1 = paper_table1.ref_cost_over_capsule(model, "phantom /1")
-    paper_ph8 = paper_table1.ref_cost_over_capsule(model, "phantom /8")
-    good = values_for(model, 3.82, 1.0, paper_ph1, paper_ph8)
+    paper_ph8 = paper_table1.ref_cost_over_capsule(model, k)
+    good = values_for(k, 3.82, 1.0, paper_ph1, paper_ph8)
     assert cost_map.cell_text(good, model) == f"**3.82x, 1.00, {paper_ph1:.1f}, {paper_ph8:.2f}**"
     # Each figure just outside its tolerance loses the bold.
-    for bad in (values_for(model, 3.82 * 1.16, 1.0, paper_ph1, paper_ph8),
-                values_for(model, 3.82, 1.31, paper_ph1, paper_ph8),
-                values_for(model, 3.82, 1.0, paper_ph1 / 2.01, paper_ph8),
-                values_for(model, 3.82, 1.0, paper_ph1, paper_ph8 * 2.01)):
+    for bad in (values_for(k, 3.82 * 1.16, 1.0, paper_ph1, paper_ph8),
+                values_for(k, 3.82, 1.31, paper_ph1, paper_ph8),
+                values_for(k, 3.82, 1.0, paper_ph1 / 2.01, paper_ph8),
+                values_for(k, 3.82, 1.0, paper_ph1, paper_ph8 * 2.01)):
         text = cost_map.cell_text(bad, model)
         assert not text.startswith("**"), text
     # The head's deepest subdivision is /4 (its /8 is over the instance limit, n/a in the paper).
-    head = values_for("curly head", 3.17, 1.0, 15.5, 1.27)
+    assert cost_map.DEEPEST["curly head"] == 4
+    head = values_for("phantom /4", 3.17, 1.0, 15.5, 1.27)
     assert cost_map.cell_text(head, "curly head").startswith("**3.17x")
 
 
